@@ -1,0 +1,63 @@
+// The generalised cross product of N-1 vectors in R^N (Shaw 1987; the paper's Eq. 1).
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <utility>
+
+#include "core/dimension.hpp"
+
+namespace dfvn {
+
+// cross(v_1, ..., v_{N-1}) is the vector c with c . v = det[v | v_1 | ... | v_{N-1}] for every v
+// (Eq. 1). In 2D that is (v_y, -v_x), the vector rotated clockwise by 90 degrees (Section 3.2); in 3D
+// the usual cross product.
+//
+// Instead of N cofactors of size N-1 (O(N^4)) we factor A = [v_1 | ... | v_{N-1}] once, O(N^3):
+// Gaussian elimination with partial pivoting gives P A = L U with L unit lower triangular (N x N,
+// last column e_N) and U upper triangular (N x (N-1), last row zero). Then
+//   P [A | v] = L [U | L^{-1} P v]  =>  det[A | v] = sign(P) prod(U_kk) (e_N^T L^{-1} P v),
+// so with l = L^{-T} e_N: det[A | v] = sign(P) prod(U_kk) sum_i l_i v_{perm(i)}, and
+// det[v | A] = (-1)^(N-1) det[A | v] (moving a column across N-1 others).
+// A rank-deficient A yields an exact zero pivot and the zero vector, which is the correct answer.
+template <int N>
+Vec<N> cross(const std::array<Vec<N>, N - 1>& v) {
+  double a[N][N - 1];
+  int perm[N];
+  for (int i = 0; i < N; ++i) {
+    perm[i] = i;
+    for (int k = 0; k < N - 1; ++k) a[i][k] = v[k][i];
+  }
+  double scale = (N % 2 == 1) ? 1.0 : -1.0;  // (-1)^(N-1)
+  for (int k = 0; k < N - 1; ++k) {
+    int pivot = k;
+    for (int i = k + 1; i < N; ++i)
+      if (std::abs(a[i][k]) > std::abs(a[pivot][k])) pivot = i;
+    if (a[pivot][k] == 0.0) return Vec<N>::Zero();
+    if (pivot != k) {
+      for (int j = 0; j < N - 1; ++j) std::swap(a[k][j], a[pivot][j]);
+      std::swap(perm[k], perm[pivot]);
+      scale = -scale;
+    }
+    scale *= a[k][k];
+    const double inverse_pivot = 1.0 / a[k][k];
+    for (int i = k + 1; i < N; ++i) {
+      const double factor = a[i][k] * inverse_pivot;
+      a[i][k] = factor;  // L(i, k)
+      for (int j = k + 1; j < N - 1; ++j) a[i][j] -= factor * a[k][j];
+    }
+  }
+  // Solve L^T l = e_N by back substitution (L^T is unit upper triangular).
+  double l[N];
+  l[N - 1] = 1.0;
+  for (int i = N - 2; i >= 0; --i) {
+    double sum = 0.0;
+    for (int j = i + 1; j < N; ++j) sum += a[j][i] * l[j];
+    l[i] = -sum;
+  }
+  Vec<N> c;
+  for (int i = 0; i < N; ++i) c[perm[i]] = scale * l[i];
+  return c;
+}
+
+}  // namespace dfvn

@@ -1,0 +1,23 @@
+// The `field` command's work: evaluate the DFVN field at a table of points and format the result.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "io/csv.hpp"
+
+namespace dfvn {
+
+struct FieldQuery {
+  int dimension = 3;
+  std::uint64_t seed = 1;
+  double frequency = 1.0;
+  int threads = 0;  // 0: all cores
+};
+
+// CSV with header x0..x{N-1},c0..c{N-1},f1..f{N-1} and one row per input point: the point, the
+// field vector c(x) and the N-1 noise values f_i(x), each with 17 significant digits. The bytes do
+// not depend on the thread count.
+std::string evaluate_field_csv(const FieldQuery& query, const PointTable& points);
+
+}  // namespace dfvn

@@ -1,0 +1,97 @@
+// Tracing points along a DFVN field: Algorithm 1 with Euler (Eq. 9) or RK4 steps and a reprojection
+// onto the iso-contours of the noise functions after every step (Eq. 10-12).
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+
+#include "core/dimension.hpp"
+#include "field/dfvn_field.hpp"
+
+namespace dfvn {
+
+enum class Integrator { euler, rk4 };
+enum class Reprojection { none, newton, gauss_newton };
+
+Integrator parse_integrator(std::string_view name);      // "euler" | "rk4"
+Reprojection parse_reprojection(std::string_view name);  // "none" | "newton" | "gauss-newton"
+std::string_view to_string(Integrator integrator);
+std::string_view to_string(Reprojection reprojection);
+
+struct TraceOptions {
+  Integrator integrator = Integrator::rk4;
+  Reprojection reprojection = Reprojection::gauss_newton;
+  int steps = 1;                     // M in Algorithm 1; the step length is time / steps
+  int reproject_iterations = 10;     // R: at most this many updates after each step
+  double residual_tolerance = 1e-13; // stop when max_i |f_i(x) - tau_i| is below this
+  // Gauss-Newton skips an update whose Jacobian has a condition number (largest / smallest
+  // singular value, estimated from the pivoted QR) above this; Newton skips a function whose
+  // gradient is below max_condition^-1 times the field's RMS gradient (which is 1 by construction).
+  double max_condition = 1e8;
+
+  // Throws std::invalid_argument with a message naming the offending option.
+  void validate() const;
+};
+
+// Counters over one or many traces (they add up; reset by assigning {}).
+struct TraceStats {
+  std::int64_t field_evaluations = 0;
+  std::int64_t reprojection_updates = 0;
+  std::int64_t skipped_updates = 0;  // rank-deficient or ill-conditioned Jacobian, or non-finite step
+
+  TraceStats& operator+=(const TraceStats& other) {
+    field_evaluations += other.field_evaluations;
+    reprojection_updates += other.reprojection_updates;
+    skipped_updates += other.skipped_updates;
+    return *this;
+  }
+};
+
+// A tracer binds a field to one (integrator, reprojection) policy, chosen once here so that the
+// step loop contains no strategy switches.
+template <int N>
+class Tracer {
+ public:
+  // Throws std::invalid_argument if the options are invalid.
+  Tracer(const DfvnField<N>& field, const TraceOptions& options);
+
+  // Algorithm 1: trace x0 for time t (t may be negative: backwards) in options.steps steps.
+  Vec<N> trace(const Vec<N>& x0, double time, TraceStats* stats = nullptr) const;
+
+  // Moves x back onto the iso-contours f(x) = tau with the configured policy; returns the last
+  // field evaluation at the returned point.
+  FieldSample<N> reproject(Vec<N>& x, const std::array<double, N - 1>& tau,
+                           TraceStats* stats = nullptr) const;
+
+  const TraceOptions& options() const { return options_; }
+  const DfvnField<N>& field() const { return field_; }
+
+ private:
+  using TraceFunction = Vec<N> (*)(const Tracer&, const Vec<N>&, double, TraceStats&);
+  using ReprojectFunction = FieldSample<N> (*)(const Tracer&, Vec<N>&, const std::array<double, N - 1>&,
+                                               TraceStats&);
+  DfvnField<N> field_;  // a copy: three words, and no dangling reference
+  TraceOptions options_;
+  TraceFunction trace_;
+  ReprojectFunction reproject_;
+
+  template <Integrator I, Reprojection R>
+  static Vec<N> trace_with(const Tracer&, const Vec<N>&, double, TraceStats&);
+  template <Reprojection R>
+  static FieldSample<N> reproject_with(const Tracer&, Vec<N>&, const std::array<double, N - 1>&,
+                                       TraceStats&);
+};
+
+// Max over i of |f_i(sample) - tau_i|.
+template <int N>
+double iso_residual(const FieldSample<N>& sample, const std::array<double, N - 1>& tau);
+
+extern template class Tracer<2>;
+extern template class Tracer<3>;
+extern template class Tracer<4>;
+extern template class Tracer<5>;
+extern template class Tracer<6>;
+extern template class Tracer<7>;
+extern template class Tracer<8>;
+
+}  // namespace dfvn

@@ -1,0 +1,39 @@
+// Reading points from CSV and writing numbers so that they read back to the same double.
+#pragma once
+
+#include <cstddef>
+#include <istream>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace dfvn {
+
+// Bad input data. The message names the line (and column) and the problem.
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Points as a row-major table: coordinates.size() == rows * dimension.
+struct PointTable {
+  int dimension = 0;
+  std::vector<double> coordinates;
+  std::size_t rows() const { return dimension ? coordinates.size() / dimension : 0; }
+  const double* row(std::size_t i) const { return coordinates.data() + i * dimension; }
+};
+
+// One point per line, `dimension` comma-separated finite numbers. The first line may be a header
+// (every field non-numeric, e.g. "x0,x1,x2"); blank lines are skipped. Throws InputError naming
+// the line on a wrong column count, text that is not a number, or NaN/Inf.
+PointTable read_points_csv(std::istream& in, int dimension);
+
+// A double in the shortest form that still has 17 significant digits of precision ("%.17g"), so the
+// text reads back to the identical value.
+void append_double(std::string& out, double value);
+
+// "x0,x1,...,x{n-1}" style header: prefix0,prefix1,...
+std::string numbered_header(std::string_view prefix, int count, int first_index = 0);
+
+}  // namespace dfvn

@@ -1,0 +1,135 @@
+#include "noise/simplex_noise.hpp"
+
+#include <cassert>
+#include <cmath>
+
+#include "core/hash.hpp"
+
+namespace dfvn {
+namespace {
+
+// Gradient directions. For N >= 3 the midpoints of the edges of the cube [-1,1]^N (one coordinate
+// zero, the others +-1: N 2^(N-1) directions), the set Perlin and Gustavson use in 3D and 4D.
+// In 2D that set has only the 4 axis directions, so 2D uses 8 directions 45 degrees apart instead.
+template <int N>
+inline void gradient_from_hash(std::uint64_t h, double* g) {
+  if constexpr (N == 2) {
+    static constexpr double kDiagonal = 0.70710678118654752440;  // 1/sqrt(2)
+    static constexpr double kDirections[8][2] = {{1, 0},
+                                                 {kDiagonal, kDiagonal},
+                                                 {0, 1},
+                                                 {-kDiagonal, kDiagonal},
+                                                 {-1, 0},
+                                                 {-kDiagonal, -kDiagonal},
+                                                 {0, -1},
+                                                 {kDiagonal, -kDiagonal}};
+    const auto k = static_cast<int>(h >> 61);
+    g[0] = kDirections[k][0];
+    g[1] = kDirections[k][1];
+  } else {
+    const auto zero_axis = static_cast<int>((h >> 32) % static_cast<std::uint64_t>(N));
+    for (int j = 0; j < N; ++j) g[j] = ((h >> j) & 1U) ? -1.0 : 1.0;
+    g[zero_axis] = 0.0;
+  }
+}
+
+}  // namespace
+
+template <int N>
+template <int M>
+NoiseSample<N, M> SimplexNoise<N>::evaluate(const Vec<N>& x, int first_function) const {
+  static_assert(M >= 1 && M <= N - 1);
+  assert(first_function >= 0 && first_function + M <= kMaxFunctions);
+
+  // Skew (F) and unskew (G) factors of the simplex lattice; see the header for the geometry.
+  const double root = std::sqrt(static_cast<double>(N + 1));
+  const double skew = (root - 1.0) / N;
+  const double unskew = (1.0 - 1.0 / root) / N;
+
+  const double skewed_shift = x.sum() * skew;
+  std::array<std::int64_t, N> cell;
+  Vec<N> frac;
+  for (int j = 0; j < N; ++j) {
+    const double y = x[j] + skewed_shift;
+    const double fl = std::floor(y);
+    cell[j] = static_cast<std::int64_t>(fl);
+    frac[j] = y - fl;
+  }
+  // Offset from vertex 0 in unskewed space: unskew(y) - unskew(cell) = unskew(frac).
+  Vec<N> offset = frac.array() - unskew * frac.sum();
+
+  // rank[j] = position of axis j when the fractional parts are sorted in decreasing order
+  // (ties broken by axis index); vertex k of the simplex has stepped along the axes of rank < k.
+  std::array<int, N> axis_of_rank;
+  for (int j = 0; j < N; ++j) {
+    int rank = 0;
+    for (int i = 0; i < N; ++i) rank += (frac[i] > frac[j]) || (frac[i] == frac[j] && i < j);
+    axis_of_rank[rank] = j;
+  }
+
+  NoiseSample<N, M> out;
+  for (int m = 0; m < M; ++m) {
+    out.value[m] = 0.0;
+    out.gradient[m].setZero();
+  }
+
+  std::array<std::int64_t, N> vertex = cell;
+  for (int k = 0; k <= N; ++k) {
+    if (k > 0) {
+      // Step from vertex k-1 to vertex k: +1 along one axis in skewed space, which moves the
+      // unskewed offset by -e_axis + G 1.
+      const int axis = axis_of_rank[k - 1];
+      vertex[axis] += 1;
+      offset.array() += unskew;
+      offset[axis] -= 1.0;
+    }
+    const double t = kKernelRadius2 - offset.squaredNorm();
+    if (t <= 0.0) continue;
+    const double t2 = t * t;
+    const double t3 = t2 * t;
+    const double t4 = t2 * t2;
+
+    std::uint64_t vertex_hash = mix64(seed_ ^ static_cast<std::uint64_t>(Stream::noise));
+    for (int j = 0; j < N; ++j) vertex_hash = hash_combine(vertex_hash, static_cast<std::uint64_t>(vertex[j]));
+
+    for (int m = 0; m < M; ++m) {
+      // An independent gradient per function: the vertex hash re-mixed with the function index.
+      const std::uint64_t h = mix64(vertex_hash + static_cast<std::uint64_t>(first_function + m + 1) * kGoldenGamma);
+      Vec<N> g;
+      gradient_from_hash<N>(h, g.data());
+      const double g_dot_d = g.dot(offset);
+      // d/dx [t^4 (g.d)] = t^4 g + 4 t^3 (g.d) dt/dx, with dt/dx = -2 d.
+      out.value[m] += t4 * g_dot_d;
+      out.gradient[m] += t4 * g - (8.0 * t3 * g_dot_d) * offset;
+    }
+  }
+  return out;
+}
+
+// Every dimension with the fused (all N-1 functions) and the single-function traversal; in 2D the
+// two are the same instantiation.
+#define DFVN_INSTANTIATE_NOISE(N)                                                             \
+  template class SimplexNoise<N>;                                                             \
+  template NoiseSample<N, N - 1> SimplexNoise<N>::evaluate<N - 1>(const Vec<N>&, int) const;
+
+#define DFVN_INSTANTIATE_NOISE_SINGLE(N) \
+  template NoiseSample<N, 1> SimplexNoise<N>::evaluate<1>(const Vec<N>&, int) const;
+
+DFVN_INSTANTIATE_NOISE(2)
+DFVN_INSTANTIATE_NOISE(3)
+DFVN_INSTANTIATE_NOISE(4)
+DFVN_INSTANTIATE_NOISE(5)
+DFVN_INSTANTIATE_NOISE(6)
+DFVN_INSTANTIATE_NOISE(7)
+DFVN_INSTANTIATE_NOISE(8)
+DFVN_INSTANTIATE_NOISE_SINGLE(3)
+DFVN_INSTANTIATE_NOISE_SINGLE(4)
+DFVN_INSTANTIATE_NOISE_SINGLE(5)
+DFVN_INSTANTIATE_NOISE_SINGLE(6)
+DFVN_INSTANTIATE_NOISE_SINGLE(7)
+DFVN_INSTANTIATE_NOISE_SINGLE(8)
+
+#undef DFVN_INSTANTIATE_NOISE
+#undef DFVN_INSTANTIATE_NOISE_SINGLE
+
+}  // namespace dfvn

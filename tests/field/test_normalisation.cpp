@@ -1,0 +1,44 @@
+// Re-checks the amplitudes of src/field/normalisation.hpp: RMS |c| = 1 in every dimension, measured
+// on seeds and points that the derivation (scripts/derive_normalisation) did not use.
+#include "field/normalisation.hpp"
+
+#include <cmath>
+
+#include "field/dfvn_field.hpp"
+#include "test_support.hpp"
+
+namespace dfvn {
+namespace {
+
+template <typename D>
+class NormalisationTest : public ::testing::Test {};
+TYPED_TEST_SUITE(NormalisationTest, testing::AllDimensions);
+
+TYPED_TEST(NormalisationTest, RmsSpeedIsOne) {
+  constexpr int N = TypeParam::value;
+  const int seeds = 4;
+  const int samples = 150000;
+  double sum = 0.0, sum2 = 0.0;
+  for (int s = 0; s < seeds; ++s) {
+    const DfvnField<N> field(777 + static_cast<std::uint64_t>(s), 2.5);
+    for (int i = 0; i < samples; ++i) {
+      const double c2 = field.velocity(testing::random_point<N>(555 + static_cast<std::uint64_t>(s),
+                                                                 static_cast<std::uint64_t>(i), 0.0, 400.0))
+                            .squaredNorm();
+      sum += c2;
+      sum2 += c2 * c2;
+    }
+  }
+  const double total = static_cast<double>(seeds) * samples;
+  const double mean = sum / total;
+  const double standard_error = std::sqrt((sum2 / total - mean * mean) / total);
+  const double rms = std::sqrt(mean);
+  // Relative standard error of the RMS is half that of the mean of |c|^2. |c|^2 is heavy-tailed in
+  // high dimensions (see normalisation.hpp), so the tolerance is 4 standard errors, at least 2%.
+  const double tolerance = std::max(0.02, 4.0 * 0.5 * standard_error / mean);
+  std::printf("N=%d RMS |c| = %.4f (tolerance %.3f)\n", N, rms, tolerance);
+  EXPECT_NEAR(rms, 1.0, tolerance);
+}
+
+}  // namespace
+}  // namespace dfvn

@@ -1,0 +1,39 @@
+// Shared helpers for the typed dimension sweeps.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <type_traits>
+
+#include "core/dimension.hpp"
+#include "core/hash.hpp"
+
+namespace dfvn::testing {
+
+template <int N>
+using Dim = std::integral_constant<int, N>;
+using AllDimensions = ::testing::Types<Dim<2>, Dim<3>, Dim<4>, Dim<5>, Dim<6>, Dim<7>, Dim<8>>;
+
+// A reproducible point in [lo, hi]^N: randomness is keyed by (seed, index), never by time.
+template <int N>
+Vec<N> random_point(std::uint64_t seed, std::uint64_t index, double lo = -20.0, double hi = 20.0) {
+  Vec<N> x;
+  for (int j = 0; j < N; ++j)
+    x[j] = lo + (hi - lo) * random_unit(seed, Stream::test, index, static_cast<std::uint64_t>(j));
+  return x;
+}
+
+// A direction uniformly distributed on the unit sphere (normalised Gaussian by Box-Muller).
+template <int N>
+Vec<N> random_direction(std::uint64_t seed, std::uint64_t index) {
+  Vec<N> v;
+  for (int j = 0; j < N; ++j) {
+    const double u1 = 1.0 - random_unit(seed, Stream::test, index, 2 * j + 1000);
+    const double u2 = random_unit(seed, Stream::test, index, 2 * j + 1001);
+    v[j] = std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
+  }
+  return v.normalized();
+}
+
+}  // namespace dfvn::testing
