@@ -43,6 +43,7 @@ void TraceOptions::validate() const {
     throw std::invalid_argument("residual tolerance must be finite and >= 0");
   if (!std::isfinite(max_condition) || max_condition <= 1.0)
     throw std::invalid_argument("maximum condition number must be finite and > 1");
+  if (!(max_update_ratio > 0.0)) throw std::invalid_argument("maximum update ratio must be > 0");
 }
 
 template <int N>
@@ -64,14 +65,34 @@ FieldSample<N> evaluate_counted(const DfvnField<N>& field, const Vec<N>& x, Trac
 
 template <int N>
 template <Reprojection R>
-FieldSample<N> Tracer<N>::reproject_with(const Tracer& self, Vec<N>& x,
-                                         const std::array<double, N - 1>& tau, TraceStats& stats) {
+FieldSample<N> Tracer<N>::reproject_with(const Tracer& self, Vec<N>& x, const std::array<double, N - 1>& tau,
+                                         double max_update, TraceStats& stats) {
   const TraceOptions& o = self.options_;
   FieldSample<N> sample = evaluate_counted(self.field_, x, stats);
+  double residual_now = iso_residual<N>(sample, tau);
+  // Takes x + step unless it is too long or raises the residual; false when it was not taken.
+  auto try_update = [&](const Vec<N>& step) {
+    if (!step.allFinite() || !(step.norm() <= max_update)) {
+      ++stats.skipped_updates;
+      return false;
+    }
+    const Vec<N> candidate = x + step;
+    FieldSample<N> moved = evaluate_counted(self.field_, candidate, stats);
+    const double residual_moved = iso_residual<N>(moved, tau);
+    if (!(residual_moved <= residual_now)) {
+      ++stats.skipped_updates;
+      return false;
+    }
+    x = candidate;
+    sample = std::move(moved);
+    residual_now = residual_moved;
+    ++stats.reprojection_updates;
+    return true;
+  };
   if constexpr (R == Reprojection::gauss_newton) {
     using JacobianT = Eigen::Matrix<double, N, N - 1>;  // J^T: column i is grad f_i
     for (int iteration = 0; iteration < o.reproject_iterations; ++iteration) {
-      if (iso_residual<N>(sample, tau) <= o.residual_tolerance) break;
+      if (residual_now <= o.residual_tolerance) break;
       JacobianT jacobian_t;
       Eigen::Matrix<double, N - 1, 1> residual;
       for (int i = 0; i < N - 1; ++i) {
@@ -94,19 +115,19 @@ FieldSample<N> Tracer<N>::reproject_with(const Tracer& self, Vec<N>& x,
       Vec<N> step = Vec<N>::Zero();
       step.template head<N - 1>() = w;
       step = qr.householderQ() * step;
-      if (!step.allFinite()) {
-        ++stats.skipped_updates;
-        break;
-      }
-      x += step;
-      ++stats.reprojection_updates;
-      sample = evaluate_counted(self.field_, x, stats);
+      if (!try_update(step)) break;
     }
   } else if constexpr (R == Reprojection::newton) {
     const double min_gradient2 = 1.0 / (o.max_condition * o.max_condition);
     for (int iteration = 0; iteration < o.reproject_iterations; ++iteration) {
-      if (iso_residual<N>(sample, tau) <= o.residual_tolerance) break;
-      // Eq. (12), one function at a time, each with a fresh evaluation at the moved point.
+      if (residual_now <= o.residual_tolerance) break;
+      // Eq. (12), one function at a time, each with a fresh evaluation at the moved point. A single
+      // projection may raise another function's residual, so the monotonicity test applies to the
+      // sweep: a sweep that ends with a larger residual is undone.
+      const Vec<N> sweep_start = x;
+      const FieldSample<N> sample_start = sample;
+      const double residual_start = residual_now;
+      const std::int64_t updates_start = stats.reprojection_updates;
       for (int i = 0; i < N - 1; ++i) {
         const Vec<N>& gradient = sample.gradient[i];
         const double gradient2 = gradient.squaredNorm();
@@ -115,13 +136,22 @@ FieldSample<N> Tracer<N>::reproject_with(const Tracer& self, Vec<N>& x,
           continue;
         }
         const Vec<N> step = -gradient * ((sample.value[i] - tau[i]) / gradient2);
-        if (!step.allFinite()) {
+        if (!step.allFinite() || !(step.norm() <= max_update)) {
           ++stats.skipped_updates;
           continue;
         }
         x += step;
         ++stats.reprojection_updates;
         sample = evaluate_counted(self.field_, x, stats);
+      }
+      residual_now = iso_residual<N>(sample, tau);
+      if (!(residual_now <= residual_start)) {
+        stats.skipped_updates += stats.reprojection_updates - updates_start;
+        stats.reprojection_updates = updates_start;
+        x = sweep_start;
+        sample = sample_start;
+        residual_now = residual_start;
+        break;
       }
     }
   }
@@ -138,6 +168,7 @@ Vec<N> Tracer<N>::trace_with(const Tracer& self, const Vec<N>& x0, double time, 
   FieldSample<N> current = evaluate_counted(self.field_, x, stats);
   const std::array<double, N - 1> tau = current.value;
   for (int k = 0; k < steps; ++k) {
+    const Vec<N> before_step = x;
     if constexpr (I == Integrator::euler) {
       x += h * current.velocity;  // Eq. (9)
     } else {
@@ -152,7 +183,8 @@ Vec<N> Tracer<N>::trace_with(const Tracer& self, const Vec<N>& x0, double time, 
       if (!last) current = evaluate_counted(self.field_, x, stats);
     } else {
       // The reprojection ends with an evaluation at the projected point: it is the next k1.
-      current = reproject_with<R>(self, x, tau, stats);
+      const double max_update = self.options_.max_update_ratio * (x - before_step).norm();
+      current = reproject_with<R>(self, x, tau, max_update, stats);
     }
   }
   return x;
@@ -188,10 +220,10 @@ Vec<N> Tracer<N>::trace(const Vec<N>& x0, double time, TraceStats* stats) const 
 }
 
 template <int N>
-FieldSample<N> Tracer<N>::reproject(Vec<N>& x, const std::array<double, N - 1>& tau,
-                                    TraceStats* stats) const {
+FieldSample<N> Tracer<N>::reproject(Vec<N>& x, const std::array<double, N - 1>& tau, TraceStats* stats,
+                                    double max_update) const {
   TraceStats local;
-  FieldSample<N> sample = reproject_(*this, x, tau, local);
+  FieldSample<N> sample = reproject_(*this, x, tau, max_update, local);
   if (stats) *stats += local;
   return sample;
 }

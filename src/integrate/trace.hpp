@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string_view>
 
 #include "core/dimension.hpp"
@@ -28,6 +29,14 @@ struct TraceOptions {
   // singular value, estimated from the pivoted QR) above this; Newton skips a function whose
   // gradient is below max_condition^-1 times the field's RMS gradient (which is 1 by construction).
   double max_condition = 1e8;
+  // An update longer than this times the length of the integration step it corrects is rejected,
+  // and so is one that raises the residual. A correction longer than the step itself means the
+  // linearisation is wrong and would jump to a distant part of the contour: without this bound a
+  // single RK4 step + Gauss-Newton on the 5D paper lattice moved points up to 5.5e7 step lengths.
+  // The authors' code uses 0.1, but in fast regions of the 5D-8D field an RK4 step's error is
+  // comparable to the step, and 0.1 then rejects the corrections that keep traces on their contours
+  // (tests/integrate/test_trace.cpp: drift 0.08-0.16 with 0.1, below 1e-13 with 1).
+  double max_update_ratio = 1.0;
 
   // Throws std::invalid_argument with a message naming the offending option.
   void validate() const;
@@ -37,7 +46,9 @@ struct TraceOptions {
 struct TraceStats {
   std::int64_t field_evaluations = 0;
   std::int64_t reprojection_updates = 0;
-  std::int64_t skipped_updates = 0;  // rank-deficient or ill-conditioned Jacobian, or non-finite step
+  // Updates not taken: rank-deficient or ill-conditioned Jacobian, non-finite, longer than
+  // max_update_ratio x step, or raising the residual.
+  std::int64_t skipped_updates = 0;
 
   TraceStats& operator+=(const TraceStats& other) {
     field_evaluations += other.field_evaluations;
@@ -58,17 +69,17 @@ class Tracer {
   // Algorithm 1: trace x0 for time t (t may be negative: backwards) in options.steps steps.
   Vec<N> trace(const Vec<N>& x0, double time, TraceStats* stats = nullptr) const;
 
-  // Moves x back onto the iso-contours f(x) = tau with the configured policy; returns the last
-  // field evaluation at the returned point.
-  FieldSample<N> reproject(Vec<N>& x, const std::array<double, N - 1>& tau,
-                           TraceStats* stats = nullptr) const;
+  // Moves x back onto the iso-contours f(x) = tau with the configured policy, taking no update
+  // longer than max_update; returns the field evaluation at the returned point.
+  FieldSample<N> reproject(Vec<N>& x, const std::array<double, N - 1>& tau, TraceStats* stats = nullptr,
+                           double max_update = std::numeric_limits<double>::infinity()) const;
 
   const TraceOptions& options() const { return options_; }
   const DfvnField<N>& field() const { return field_; }
 
  private:
   using TraceFunction = Vec<N> (*)(const Tracer&, const Vec<N>&, double, TraceStats&);
-  using ReprojectFunction = FieldSample<N> (*)(const Tracer&, Vec<N>&, const std::array<double, N - 1>&,
+  using ReprojectFunction = FieldSample<N> (*)(const Tracer&, Vec<N>&, const std::array<double, N - 1>&, double,
                                                TraceStats&);
   DfvnField<N> field_;  // a copy: three words, and no dangling reference
   TraceOptions options_;
@@ -78,7 +89,7 @@ class Tracer {
   template <Integrator I, Reprojection R>
   static Vec<N> trace_with(const Tracer&, const Vec<N>&, double, TraceStats&);
   template <Reprojection R>
-  static FieldSample<N> reproject_with(const Tracer&, Vec<N>&, const std::array<double, N - 1>&,
+  static FieldSample<N> reproject_with(const Tracer&, Vec<N>&, const std::array<double, N - 1>&, double,
                                        TraceStats&);
 };
 
