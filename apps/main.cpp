@@ -2,16 +2,23 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <string>
 
+#include <filesystem>
+#include <unistd.h>
+#include <vector>
+
 #include "core/dimension.hpp"
 #include "field/evaluate_points.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
+#include "io/npy.hpp"
+#include "sampling/experiment.hpp"
 
 namespace {
 
@@ -31,6 +38,16 @@ const CLI::Validator kPositiveFinite(
       return {};
     },
     "POSITIVE");
+
+// A finite number >= 0.
+const CLI::Validator kNonNegativeFinite(
+    [](std::string& text) -> std::string {
+      double value = 0.0;
+      if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value) || value < 0.0)
+        return "must be a finite number >= 0, got '" + text + "'";
+      return {};
+    },
+    "NONNEGATIVE");
 
 // Options that every subcommand shares.
 struct CommonOptions {
@@ -98,6 +115,198 @@ struct FieldCommand {
   }
 };
 
+
+// Progress on stderr, only when it is a terminal and --quiet is not given.
+class Progress {
+ public:
+  explicit Progress(bool enabled) : enabled_(enabled && ::isatty(STDERR_FILENO)) {}
+  ~Progress() { finish(); }
+  void operator()(std::string_view stage, double fraction) {
+    if (!enabled_) return;
+    std::fprintf(stderr, "\r%-12.*s %5.1f%%", static_cast<int>(stage.size()), stage.data(), 100.0 * fraction);
+    std::fflush(stderr);
+    shown_ = true;
+  }
+  void finish() {
+    if (shown_) std::fprintf(stderr, "\r%30s\r", "");
+    shown_ = false;
+  }
+
+ private:
+  bool enabled_;
+  bool shown_ = false;
+};
+
+struct SampleCommand {
+  CommonOptions common;
+  dfvn::SampleConfig config;
+  std::string methods = "cnj,jitter,pds,sobol";
+  std::string protocol = "paper";
+  std::string knn = "nanoflann";
+  std::string integrator = "rk4";
+  std::string reproject = "gauss-newton";
+  std::string scramble = "owen";
+  std::string stats_path = "-";
+  std::string rdf_path;
+  std::string points_dir;
+  std::string format = "csv";
+  bool quiet = false;
+
+  void add_to(CLI::App& parent) {
+    CLI::App* cmd = parent.add_subcommand(
+        "sample",
+        "Jitter a K^N lattice along the DFVN field (curl noise jittering, Section 5.1) and compare it with\n"
+        "random jitter, Poisson disk sampling and Sobol points by nearest-neighbour statistics (CSV).\n"
+        "This is the default subcommand: 'dfvn-sample --dim 7 --grid 6' runs it.");
+    cmd->add_option("--dim", config.dimension, "Dimension N (2..8)")
+        ->capture_default_str()
+        ->check(CLI::Range(dfvn::kMinDimension, dfvn::kMaxDimension));
+    cmd->add_option("--grid", config.grid, "Lattice points per axis K (>= 2); K^N points")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 1 << 30));
+    cmd->add_option("--methods", methods, "Comma list of cnj, jitter, pds, sobol, random")->capture_default_str();
+    cmd->add_option("--protocol", protocol,
+                    "paper: Section 5.1 as the paper ran it (lattice linspace(0.05, 0.95, K), jitter +-0.05, PDS\n"
+                    "radius 0.1 and Sobol on [0, 0.1K]^N, Sobol count 2^round(log2 K^N)); unit: every method in\n"
+                    "[0,1]^N at the density of a cell-centred K^N lattice (jitter +-1/(2K), PDS radius 1/K)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"paper", "unit"}));
+    cmd->add_option("--stats", stats_path, "Statistics CSV ('-' = standard output)")->capture_default_str();
+    cmd->add_option("--rdf", rdf_path, "Also compute radial distribution functions and write them here (CSV: dim,method,r,g)");
+    cmd->add_option("--rdf-max", config.rdf.r_max, "Largest r of the RDF; 0 = 2.5 mean spacings")
+        ->capture_default_str()
+        ->check(kNonNegativeFinite);
+    cmd->add_option("--rdf-bins", config.rdf.bins, "Number of RDF bins")->capture_default_str()->check(CLI::Range(1, 100000));
+    cmd->add_option("--rdf-queries", config.rdf.max_queries,
+                    "RDF query points: a seeded subset of about this many (0 = all points)")
+        ->capture_default_str();
+    cmd->add_option("--points", points_dir, "Write each point set to DIR/<method>.csv or DIR/<method>.npy");
+    cmd->add_option("--format", format, "Point file format: csv (header x0..x{N-1}) or npy (float64, (points, N))")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"csv", "npy"}));
+    cmd->add_option("--knn", knn, "KD-tree backend: nanoflann or flann (identical distances)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"nanoflann", "flann"}));
+    cmd->add_option("--integrator", integrator, "CNJ integrator: euler or rk4")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"euler", "rk4"}));
+    cmd->add_option("--steps", config.cnj.trace.steps, "CNJ integration steps M")->capture_default_str()->check(CLI::Range(1, 1 << 20));
+    cmd->add_option("--step-scale", config.cnj.step_scale,
+                    "CNJ trace time t = C * dbar(N) * lattice spacing, dbar the mean distance to the 3^N-1 "
+                    "lattice neighbours (Section 5.1); RMS |c| = 1, so t is the RMS move")
+        ->capture_default_str()
+        ->check(kPositiveFinite);
+    cmd->add_option("--frequency", config.cnj.frequency, "CNJ noise frequency in cycles per lattice spacing")
+        ->capture_default_str()
+        ->check(kPositiveFinite);
+    cmd->add_option("--reproject", reproject, "CNJ reprojection after each step: none, newton (Eq. 12), gauss-newton (Eq. 10-11)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"none", "newton", "gauss-newton"}));
+    cmd->add_option("--reproject-iters", config.cnj.trace.reproject_iterations, "CNJ reprojection iterations R at most")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1000));
+    cmd->add_option("--pds-radius", config.pds_radius, "Poisson disk radius; 0 = the protocol's (paper 0.1, unit 1/K)")
+        ->capture_default_str()
+        ->check(kNonNegativeFinite);
+    cmd->add_option("--pds-candidates", config.pds_candidates, "Poisson disk candidates per active point (Bridson's k)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100000));
+    cmd->add_option("--scramble", scramble, "Sobol scrambling: owen (hash-based, keyed by the seed) or none")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"owen", "none"}));
+    cmd->add_option("--max-memory", config.max_memory_gib, "Memory limit in GiB for the point sets; 0 = 80% of the machine's")
+        ->capture_default_str()
+        ->check(kNonNegativeFinite);
+    cmd->add_flag("--quiet", quiet, "No progress on stderr (progress is only shown on a terminal)");
+    add_common_options(*cmd, common);
+    cmd->callback([this] { run(); });
+  }
+
+  void run() {
+    config.seed = common.seed;
+    config.threads = common.threads;
+    config.protocol = dfvn::parse_protocol(protocol);
+    config.knn = dfvn::parse_knn_backend(knn);
+    config.scramble = dfvn::parse_scramble(scramble);
+    config.cnj.trace.integrator = dfvn::parse_integrator(integrator);
+    config.cnj.trace.reprojection = dfvn::parse_reprojection(reproject);
+    config.methods.clear();
+    for (const auto& name : CLI::detail::split(methods, ',')) {
+      const dfvn::Method m = dfvn::parse_method(CLI::detail::trim_copy(name));
+      for (dfvn::Method seen : config.methods)
+        if (seen == m) throw std::invalid_argument("--methods names '" + std::string(dfvn::to_string(m)) + "' twice");
+      config.methods.push_back(m);
+    }
+    config.compute_rdf = !rdf_path.empty();
+    config.validate();
+
+    // Check every destination before the work starts; each file is then written whole or not at all.
+    dfvn::check_writable(stats_path);
+    if (!rdf_path.empty()) dfvn::check_writable(rdf_path);
+    if (!points_dir.empty()) {
+      std::error_code error;
+      std::filesystem::create_directories(points_dir, error);
+      if (error || !std::filesystem::is_directory(points_dir))
+        throw std::runtime_error("cannot create directory '" + points_dir + "'");
+      for (dfvn::Method m : config.methods) dfvn::check_writable(point_file(m));
+    }
+
+    Progress progress(!quiet);
+    const auto results = dfvn::run_sampling(
+        config, false, [&](std::string_view stage, double f) { progress(stage, f); },
+        [&](const dfvn::MethodResult& r) {
+          if (points_dir.empty()) return;
+          dfvn::AtomicOutput out(point_file(r.plan.method));
+          if (format == "npy") {
+            dfvn::write_npy(out.stream(), r.points);
+          } else {
+            std::string text = dfvn::numbered_header("x", r.points.dimension) + '\n';
+            for (std::size_t i = 0; i < r.points.size(); ++i) {
+              for (int j = 0; j < r.points.dimension; ++j) {
+                if (j) text += ',';
+                dfvn::append_double(text, r.points.point(i)[j]);
+              }
+              text += '\n';
+            }
+            out.stream() << text;
+          }
+          out.commit();
+        });
+    progress.finish();
+
+    std::string stats = dfvn::stats_csv_header();
+    std::string rdf = dfvn::rdf_csv_header();
+    for (const auto& r : results) {
+      stats += dfvn::stats_csv_row(config, r);
+      rdf += dfvn::rdf_csv_rows(config, r);
+    }
+    if (!rdf_path.empty()) {
+      dfvn::AtomicOutput out(rdf_path);
+      out.stream() << rdf;
+      out.commit();
+    }
+    dfvn::AtomicOutput out(stats_path);
+    out.stream() << stats;
+    out.commit();
+  }
+
+  std::string point_file(dfvn::Method m) const {
+    return (std::filesystem::path(points_dir) / (std::string(dfvn::to_string(m)) + "." + format)).string();
+  }
+};
+
+const std::vector<std::string> kSubcommands = {"sample", "field"};
+
+// 'sample' is the default: insert it when the first argument names no subcommand.
+std::vector<std::string> with_default_subcommand(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  const bool names_subcommand = !args.empty() && std::find(kSubcommands.begin(), kSubcommands.end(), args[0]) != kSubcommands.end();
+  const bool top_level_flag = !args.empty() && (args[0] == "--version" || args[0] == "--help-all");
+  if (!names_subcommand && !top_level_flag) args.insert(args.begin(), "sample");
+  std::reverse(args.begin(), args.end());  // CLI11 parses a reversed vector
+  return args;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -106,11 +315,15 @@ int main(int argc, char** argv) {
                kProgram};
   app.set_version_flag("--version", std::string(kProgram) + " " + DFVN_VERSION);
   app.require_subcommand(1);
+  app.footer("Subcommands: sample (default; 'dfvn-sample sample --help'), field ('dfvn-sample field --help').");
+  SampleCommand sample;
+  sample.add_to(app);
   FieldCommand field;
   field.add_to(app);
 
   try {
-    app.parse(argc, argv);
+    std::vector<std::string> args = with_default_subcommand(argc, argv);
+    app.parse(args);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {

@@ -28,6 +28,7 @@ enum class Stream : std::uint64_t {
   random_points = 3,
   poisson_disk = 4,
   sobol_scramble = 5,
+  rdf_queries = 6,
   test = 99,
 };
 

@@ -121,38 +121,30 @@ FieldSample<N> Tracer<N>::reproject_with(const Tracer& self, Vec<N>& x, const st
     const double min_gradient2 = 1.0 / (o.max_condition * o.max_condition);
     for (int iteration = 0; iteration < o.reproject_iterations; ++iteration) {
       if (residual_now <= o.residual_tolerance) break;
-      // Eq. (12), one function at a time, each with a fresh evaluation at the moved point. A single
-      // projection may raise another function's residual, so the monotonicity test applies to the
-      // sweep: a sweep that ends with a larger residual is undone.
-      const Vec<N> sweep_start = x;
-      const FieldSample<N> sample_start = sample;
-      const double residual_start = residual_now;
-      const std::int64_t updates_start = stats.reprojection_updates;
+      // Eq. (12), one function at a time, each with a fresh evaluation at the moved point. A projection
+      // onto contour i may raise another function's residual (the sweep as a whole converges), so
+      // each projection must lower its own |f_i - tau_i|, besides the length bound.
       for (int i = 0; i < N - 1; ++i) {
         const Vec<N>& gradient = sample.gradient[i];
         const double gradient2 = gradient.squaredNorm();
-        if (!(gradient2 > min_gradient2)) {
+        const double error = sample.value[i] - tau[i];
+        if (error == 0.0) continue;
+        const Vec<N> step = -gradient * (error / gradient2);
+        if (!(gradient2 > min_gradient2) || !step.allFinite() || !(step.norm() <= max_update)) {
           ++stats.skipped_updates;
           continue;
         }
-        const Vec<N> step = -gradient * ((sample.value[i] - tau[i]) / gradient2);
-        if (!step.allFinite() || !(step.norm() <= max_update)) {
+        const Vec<N> candidate = x + step;
+        FieldSample<N> moved = evaluate_counted(self.field_, candidate, stats);
+        if (!(std::abs(moved.value[i] - tau[i]) <= std::abs(error))) {
           ++stats.skipped_updates;
           continue;
         }
-        x += step;
+        x = candidate;
+        sample = std::move(moved);
         ++stats.reprojection_updates;
-        sample = evaluate_counted(self.field_, x, stats);
       }
       residual_now = iso_residual<N>(sample, tau);
-      if (!(residual_now <= residual_start)) {
-        stats.skipped_updates += stats.reprojection_updates - updates_start;
-        stats.reprojection_updates = updates_start;
-        x = sweep_start;
-        sample = sample_start;
-        residual_now = residual_start;
-        break;
-      }
     }
   }
   return sample;

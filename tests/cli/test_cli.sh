@@ -71,5 +71,51 @@ awk 'BEGIN { for (i = 0; i < 20000; ++i) printf "%.6f,%.6f,%.6f,%.6f,%.6f\n", i*
   cmp -s "$work/t1.csv" "$work/t2.csv" && ok || bad "field output differs between 1 and 2 threads"
 "$bin" field --dim 5 --seed 10 --input "$work/p5.csv" --output "$work/s10.csv" && ! cmp -s "$work/t1.csv" "$work/s10.csv" && ok || bad "seed has no effect"
 
+# sample (the default subcommand)
+"$bin" --dim 3 --grid 5 --quiet >"$work/s.csv" 2>"$work/err" && ok || bad "default subcommand: $(cat "$work/err")"
+head -1 "$work/s.csv" | grep -q "^dim,grid,method,points,nn_min,nn_median,nn_mean,nn_median_scaled,seconds_generate,seconds_stats,seed" &&
+  ok || bad "stats header: $(head -1 "$work/s.csv")"
+[[ $(wc -l <"$work/s.csv") -eq 5 ]] && ok || bad "stats rows (cnj, jitter, pds, sobol)"
+"$bin" --help >"$work/out" 2>&1 && grep -q -- "--step-scale" "$work/out" && grep -q -- "--protocol" "$work/out" && ok || bad "sample --help"
+expect_error "sample dim" "" --dim 9 --grid 4
+expect_error "sample grid" "" --dim 3 --grid 1
+expect_message "sample grid" "grid"
+expect_error "sample memory" "" --dim 8 --grid 40 --max-memory 1
+expect_message "sample memory" "GiB of memory.*--max-memory"
+expect_error "sample method" "" --dim 3 --grid 4 --methods cnj,bogus
+expect_message "sample method" "unknown method 'bogus'"
+expect_error "sample duplicate method" "" --dim 3 --grid 4 --methods cnj,cnj
+expect_error "sample step scale" "" --dim 3 --grid 4 --step-scale 0
+expect_error "sample step scale nan" "" --dim 3 --grid 4 --step-scale nan
+expect_error "sample frequency" "" --dim 3 --grid 4 --frequency -1
+expect_error "sample reproject" "" --dim 3 --grid 4 --reproject bogus
+expect_error "sample protocol" "" --dim 3 --grid 4 --protocol bogus
+expect_error "sample pds radius" "" --dim 3 --grid 4 --pds-radius -0.1
+expect_error "sample stats path" "" --dim 3 --grid 4 --stats "$work/no/such/dir/stats.csv"
+[[ ! -e $work/no ]] && ok || bad "directory created for a bad --stats path"
+
+# Points: CSV and NPY, same bytes on 1 and 2 threads.
+"$bin" --dim 4 --grid 6 --methods cnj,jitter,sobol,random,pds --points "$work/p1" --threads 1 --quiet --stats "$work/st1.csv" &&
+  "$bin" --dim 4 --grid 6 --methods cnj,jitter,sobol,random,pds --points "$work/p2" --threads 2 --quiet --stats "$work/st2.csv" &&
+  ok || bad "points run"
+for m in cnj jitter sobol random pds; do
+  cmp -s "$work/p1/$m.csv" "$work/p2/$m.csv" && ok || bad "$m points differ between 1 and 2 threads"
+done
+head -1 "$work/p1/cnj.csv" | grep -qx "x0,x1,x2,x3" && ok || bad "points header"
+"$bin" --dim 4 --grid 6 --methods jitter --points "$work/npy" --format npy --quiet >/dev/null && ok || bad "npy run"
+if /usr/bin/python3 -c "import numpy" 2>/dev/null; then
+  /usr/bin/python3 - "$work/npy/jitter.npy" "$work/p1/jitter.csv" <<'PY' && ok || bad "npy does not load or differs from csv"
+import sys, numpy as np
+a = np.load(sys.argv[1])
+b = np.loadtxt(sys.argv[2], delimiter=",", skiprows=1)
+assert a.dtype == np.float64 and a.shape == (1296, 4) and a.flags.c_contiguous, (a.dtype, a.shape)
+assert np.array_equal(a, b)
+PY
+fi
+
+# RDF output
+"$bin" --dim 3 --grid 6 --methods jitter,random --rdf "$work/rdf.csv" --rdf-bins 10 --quiet >/dev/null && ok || bad "rdf run"
+head -1 "$work/rdf.csv" | grep -qx "dim,method,r,g" && [[ $(wc -l <"$work/rdf.csv") -eq 21 ]] && ok || bad "rdf csv shape"
+
 echo "cli: $passed passed, $failed failed"
 [[ $failed -eq 0 ]]

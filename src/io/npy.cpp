@@ -1,0 +1,29 @@
+#include "io/npy.hpp"
+
+#include <bit>
+#include <cstdint>
+#include <string>
+
+#include <fmt/format.h>
+
+namespace dfvn {
+
+void write_npy(std::ostream& out, const PointSet& points) {
+  static_assert(std::endian::native == std::endian::little, "'<f8' output assumes a little-endian machine");
+  std::string header = fmt::format("{{'descr': '<f8', 'fortran_order': False, 'shape': ({}, {}), }}", points.size(),
+                                   points.dimension);
+  // Magic (6) + version (2) + header length (2) + header, padded with spaces and ended by '\n' to a
+  // multiple of 64 bytes (the format's alignment rule).
+  const std::size_t unpadded = 10 + header.size() + 1;
+  header.append((64 - unpadded % 64) % 64, ' ');
+  header += '\n';
+  const auto length = static_cast<std::uint16_t>(header.size());
+  out.write("\x93NUMPY\x01\x00", 8);
+  const char length_bytes[2] = {static_cast<char>(length & 0xFF), static_cast<char>(length >> 8)};
+  out.write(length_bytes, 2);
+  out.write(header.data(), static_cast<std::streamsize>(header.size()));
+  out.write(reinterpret_cast<const char*>(points.coordinates.data()),
+            static_cast<std::streamsize>(points.coordinates.size() * sizeof(double)));
+}
+
+}  // namespace dfvn

@@ -1,0 +1,45 @@
+// Curl noise jittering (CNJ, Section 5.1): every lattice point is traced along the DFVN field for a
+// short time (Algorithm 1). The field has no sources or sinks, so points move without clustering.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+
+#include "integrate/trace.hpp"
+#include "sampling/lattice.hpp"
+#include "sampling/point_set.hpp"
+
+namespace dfvn {
+
+struct CnjOptions {
+  TraceOptions trace;  // default: one RK4 step with Gauss-Newton reprojection
+  // Trace time t = step_scale * dbar(N) * spacing (Section 5.1: proportional to the average
+  // neighbour distance). |c| has RMS 1, so t is also the RMS length of a one-step move.
+  double step_scale = 0.5;
+  // Noise frequency in cycles per lattice spacing: the field's frequency is frequency / spacing.
+  double frequency = 0.5;
+
+  void validate() const;  // throws std::invalid_argument naming the option
+};
+
+struct CnjResult {
+  PointSet points;                  // domain [0,1]^N; points that left it are dropped
+  std::uint64_t dropped = 0;
+  double trace_time = 0.0;          // t
+  double field_frequency = 0.0;     // frequency / spacing
+  double rms_displacement = 0.0;    // over all traced points, dropped ones included
+  TraceStats trace_stats;
+};
+
+// Progress callback: fraction done in [0, 1]; called from one thread only.
+using ProgressCallback = std::function<void(double)>;
+
+template <int N>
+CnjResult curl_noise_jitter(const LatticeSpec& lattice, const CnjOptions& options, std::uint64_t seed, int threads,
+                            const ProgressCallback& progress = {});
+
+// Runtime-dimension entry point (the lattice's dimension).
+CnjResult curl_noise_jitter(const LatticeSpec& lattice, const CnjOptions& options, std::uint64_t seed, int threads,
+                            const ProgressCallback& progress = {});
+
+}  // namespace dfvn

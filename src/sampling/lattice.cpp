@@ -1,0 +1,78 @@
+#include "sampling/lattice.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace dfvn {
+
+Method parse_method(std::string_view name) {
+  if (name == "cnj") return Method::cnj;
+  if (name == "jitter") return Method::jitter;
+  if (name == "pds") return Method::pds;
+  if (name == "sobol") return Method::sobol;
+  if (name == "random") return Method::random;
+  throw std::invalid_argument("unknown method '" + std::string(name) + "' (allowed: cnj, jitter, pds, sobol, random)");
+}
+
+std::string_view to_string(Method method) {
+  switch (method) {
+    case Method::cnj: return "cnj";
+    case Method::jitter: return "jitter";
+    case Method::pds: return "pds";
+    case Method::sobol: return "sobol";
+    case Method::random: return "random";
+  }
+  return "?";
+}
+
+Protocol parse_protocol(std::string_view name) {
+  if (name == "paper") return Protocol::paper;
+  if (name == "unit") return Protocol::unit;
+  throw std::invalid_argument("unknown protocol '" + std::string(name) + "' (allowed: paper, unit)");
+}
+
+std::string_view to_string(Protocol protocol) { return protocol == Protocol::paper ? "paper" : "unit"; }
+
+std::uint64_t LatticeSpec::point_count() const {
+  if (grid < 2) throw std::invalid_argument("grid must be at least 2, got " + std::to_string(grid));
+  std::uint64_t count = 1;
+  for (int j = 0; j < dimension; ++j) {
+    if (count > (std::uint64_t{1} << 62) / static_cast<std::uint64_t>(grid))
+      throw std::invalid_argument("grid^dim = " + std::to_string(grid) + "^" + std::to_string(dimension) +
+                                  " is too large");
+    count *= static_cast<std::uint64_t>(grid);
+  }
+  return count;
+}
+
+double LatticeSpec::spacing() const {
+  return protocol == Protocol::paper ? (1.0 - kPaperDelta) / (grid - 1) : 1.0 / grid;
+}
+
+double LatticeSpec::coordinate(int i) const {
+  return protocol == Protocol::paper ? 0.5 * kPaperDelta + i * spacing() : (i + 0.5) / grid;
+}
+
+void LatticeSpec::point(std::uint64_t index, double* out) const {
+  const auto k = static_cast<std::uint64_t>(grid);
+  for (int j = 0; j < dimension; ++j) {
+    out[j] = coordinate(static_cast<int>(index % k));
+    index /= k;
+  }
+}
+
+double jitter_half_width(const LatticeSpec& lattice) {
+  return lattice.protocol == Protocol::paper ? 0.5 * kPaperDelta : 0.5 / lattice.grid;
+}
+
+double average_neighbour_distance(int dimension) {
+  double sum = 0.0, binomial = 1.0;
+  for (int i = 1; i <= dimension; ++i) {
+    binomial = binomial * (dimension - i + 1) / i;
+    sum += std::pow(2.0, i) * binomial * std::sqrt(static_cast<double>(i));
+  }
+  return sum / (std::pow(3.0, dimension) - 1.0);
+}
+
+}  // namespace dfvn

@@ -1,0 +1,37 @@
+// The regular K^N lattice that jittering starts from, per protocol.
+#pragma once
+
+#include <cstdint>
+
+#include "sampling/point_set.hpp"
+
+namespace dfvn {
+
+struct LatticeSpec {
+  int dimension = 3;
+  int grid = 10;  // K points per axis
+  Protocol protocol = Protocol::paper;
+
+  // K^N; throws std::invalid_argument if it does not fit in 63 bits.
+  std::uint64_t point_count() const;
+  // Distance between neighbouring lattice points along an axis.
+  double spacing() const;
+  // paper: linspace(delta/2, 1 - delta/2, K) with delta = 0.1 (so the spacing is 0.9/(K-1): 0.1 for
+  // K = 10, 0.15 for K = 7, 0.18 for K = 6); unit: cell centres (i + 1/2) / K.
+  double coordinate(int i) const;
+  // Point `index` (mixed radix, axis 0 fastest) into out[0..N).
+  void point(std::uint64_t index, double* out) const;
+};
+
+// Half-width of the uniform jitter: paper: delta/2 = 0.05 whatever K (PROTOCOL.md); unit: 1/(2K).
+double jitter_half_width(const LatticeSpec& lattice);
+
+// The paper's delta = 0.1, the lattice step for K = 10 and the PDS radius of Table 1.
+inline constexpr double kPaperDelta = 0.1;
+
+// Section 5.1: the average distance from a lattice point to its 3^N - 1 neighbours, in units of the
+// spacing: dbar = sum_{i=1..N} 2^i C(N, i) sqrt(i) / (3^N - 1). (C(N,i) 2^i neighbours differ in i
+// coordinates, by +-1 each, and lie sqrt(i) away.)
+double average_neighbour_distance(int dimension);
+
+}  // namespace dfvn

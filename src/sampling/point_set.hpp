@@ -1,0 +1,43 @@
+// A point set in a cube-shaped domain, and the names of the generators and protocols.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace dfvn {
+
+// The cube [lo, lo + side]^N.
+struct Box {
+  double lo = 0.0;
+  double side = 1.0;
+  double volume(int dimension) const { return std::pow(side, dimension); }
+  bool contains(const double* x, int dimension) const {
+    for (int j = 0; j < dimension; ++j)
+      if (!(x[j] >= lo && x[j] <= lo + side)) return false;
+    return true;
+  }
+};
+
+// points: size() x dimension, row-major.
+struct PointSet {
+  int dimension = 0;
+  std::vector<double> coordinates;
+  Box domain;
+  std::size_t size() const { return dimension ? coordinates.size() / dimension : 0; }
+  const double* point(std::size_t i) const { return coordinates.data() + i * dimension; }
+};
+
+enum class Method { cnj, jitter, pds, sobol, random };
+Method parse_method(std::string_view name);  // throws std::invalid_argument listing the names
+std::string_view to_string(Method method);
+
+// paper: Section 5.1 exactly as reference/PROTOCOL.md establishes it. unit: every method in the unit
+// cube at the density of a cell-centred K^N lattice.
+enum class Protocol { paper, unit };
+Protocol parse_protocol(std::string_view name);
+std::string_view to_string(Protocol protocol);
+
+}  // namespace dfvn

@@ -1,0 +1,102 @@
+#include "sampling/sobol.hpp"
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "core/hash.hpp"
+#include "core/parallel.hpp"
+#include "joe_kuo_table.hpp"
+
+namespace dfvn {
+
+Scramble parse_scramble(std::string_view name) {
+  if (name == "owen") return Scramble::owen;
+  if (name == "none") return Scramble::none;
+  throw std::invalid_argument("unknown scramble '" + std::string(name) + "' (allowed: owen, none)");
+}
+
+std::string_view to_string(Scramble scramble) { return scramble == Scramble::owen ? "owen" : "none"; }
+
+SobolSequence::SobolSequence(int dimensions) {
+  if (dimensions < 1) throw std::invalid_argument("Sobol needs at least one dimension");
+  // Dimension 1: van der Corput, v_k = 2^(31-k).
+  std::array<std::uint32_t, kBits> first{};
+  for (int k = 0; k < kBits; ++k) first[k] = std::uint32_t{1} << (kBits - 1 - k);
+  directions_.push_back(first);
+
+  std::istringstream table(kJoeKuoDirectionNumbers);
+  std::string line;
+  while (static_cast<int>(directions_.size()) < dimensions && std::getline(table, line)) {
+    if (line.empty() || line[0] == '#' || line[0] == 'd') continue;
+    std::istringstream row(line);
+    int d = 0, s = 0;
+    std::uint32_t a = 0;
+    row >> d >> s >> a;
+    std::array<std::uint32_t, kBits> v{};
+    for (int k = 0; k < s; ++k) {
+      std::uint32_t m = 0;
+      row >> m;
+      v[k] = m << (kBits - 1 - k);
+    }
+    if (!row || d != static_cast<int>(directions_.size()) + 1) throw std::logic_error("malformed Joe-Kuo table row: " + line);
+    // Recurrence of the primitive polynomial x^s + a_1 x^(s-1) + ... + a_(s-1) x + 1 (Joe & Kuo, Eq. 2):
+    // v_k = a_1 v_(k-1) ^ ... ^ a_(s-1) v_(k-s+1) ^ v_(k-s) ^ (v_(k-s) >> s).
+    for (int k = s; k < kBits; ++k) {
+      std::uint32_t value = v[k - s] ^ (v[k - s] >> s);
+      for (int i = 1; i < s; ++i)
+        if ((a >> (s - 1 - i)) & 1U) value ^= v[k - i];
+      v[k] = value;
+    }
+    directions_.push_back(v);
+  }
+  if (static_cast<int>(directions_.size()) < dimensions)
+    throw std::invalid_argument("Sobol direction numbers are available for " + std::to_string(directions_.size()) +
+                                " dimensions, asked for " + std::to_string(dimensions));
+}
+
+std::uint32_t SobolSequence::digits(std::uint32_t index, int dim) const {
+  const auto& v = directions_[static_cast<std::size_t>(dim)];
+  std::uint32_t gray = index ^ (index >> 1);
+  std::uint32_t x = 0;
+  for (int k = 0; gray != 0; ++k, gray >>= 1)
+    if (gray & 1U) x ^= v[k];
+  return x;
+}
+
+std::uint32_t owen_scramble(std::uint32_t digits, std::uint64_t seed, int dim) {
+  const std::uint64_t base = random_bits(seed, Stream::sobol_scramble, static_cast<std::uint64_t>(dim));
+  std::uint32_t out = digits;
+  for (int b = 31; b >= 0; --b) {
+    // The digits above b, with a marker bit so that prefixes of different lengths differ.
+    const std::uint64_t prefix = (static_cast<std::uint64_t>(digits) >> (b + 1)) | (std::uint64_t{1} << (31 - b));
+    if (hash_combine(base, prefix) & 1U) out ^= std::uint32_t{1} << b;
+  }
+  return out;
+}
+
+PointSet sobol_points(int dimension, std::uint64_t count, const Box& domain, Scramble scramble, std::uint64_t seed,
+                      int threads) {
+  if (count > (std::uint64_t{1} << 32)) throw std::invalid_argument("at most 2^32 Sobol points");
+  const SobolSequence sequence(dimension);
+  PointSet out{dimension, std::vector<double>(count * static_cast<std::uint64_t>(dimension)), domain};
+#pragma omp parallel for schedule(static) num_threads(resolve_threads(threads))
+  for (std::int64_t i = 0; i < static_cast<std::int64_t>(count); ++i) {
+    for (int j = 0; j < dimension; ++j) {
+      std::uint32_t d = sequence.digits(static_cast<std::uint32_t>(i), j);
+      double unit;
+      if (scramble == Scramble::owen) {
+        d = owen_scramble(d, seed, j);
+        const double below = random_unit(seed, Stream::sobol_scramble, static_cast<std::uint64_t>(i),
+                                         static_cast<std::uint64_t>(j) + 1000);
+        unit = (static_cast<double>(d) + below) * 0x1.0p-32;
+      } else {
+        unit = static_cast<double>(d) * 0x1.0p-32;
+      }
+      out.coordinates[static_cast<std::size_t>(i) * dimension + j] = domain.lo + domain.side * unit;
+    }
+  }
+  return out;
+}
+
+}  // namespace dfvn

@@ -1,0 +1,45 @@
+// Sobol points (Joe-Kuo direction numbers) with optional hash-based Owen scrambling.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "sampling/point_set.hpp"
+
+namespace dfvn {
+
+enum class Scramble { owen, none };
+Scramble parse_scramble(std::string_view name);  // "owen" | "none"
+std::string_view to_string(Scramble scramble);
+
+class SobolSequence {
+ public:
+  static constexpr int kBits = 32;
+  // The first `dimensions` dimensions of new-joe-kuo-6.21201 (data/). Throws std::invalid_argument
+  // above the 15 dimensions the table holds.
+  explicit SobolSequence(int dimensions);
+
+  int dimensions() const { return static_cast<int>(directions_.size()); }
+  // The 32-bit digits of point `index` in dimension `dim` (index < 2^32); point 0 is the origin.
+  // Points come in Gray-code order (point i uses the direction numbers of the bits of i ^ (i >> 1)),
+  // the order of Joe and Kuo's generator and of SciPy; any 2^m first points form the same net.
+  std::uint32_t digits(std::uint32_t index, int dim) const;
+
+ private:
+  std::vector<std::array<std::uint32_t, kBits>> directions_;
+};
+
+// Nested uniform (Owen) scrambling of 32 digits: digit b is flipped by a hash of the seed, the
+// dimension and all digits above b, so points that share a prefix get the same flips (Owen 1995;
+// the hashed form of pbrt-v4's OwenScrambler).
+std::uint32_t owen_scramble(std::uint32_t digits, std::uint64_t seed, int dim);
+
+// `count` Sobol points scaled to `domain`. With Scramble::none the coordinates are digits / 2^32
+// exactly; with Scramble::owen the digits are scrambled and the bits below 2^-32 are filled with
+// hashed uniform bits. Deterministic per seed; independent of the thread count.
+PointSet sobol_points(int dimension, std::uint64_t count, const Box& domain, Scramble scramble, std::uint64_t seed,
+                      int threads);
+
+}  // namespace dfvn

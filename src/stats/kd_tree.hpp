@@ -1,0 +1,27 @@
+// nanoflann KD-tree over a PointSet (the points are not copied).
+#pragma once
+
+#include <nanoflann.hpp>
+
+#include "sampling/point_set.hpp"
+
+namespace dfvn {
+
+template <int N>
+struct PointSetAdaptor {
+  const PointSet& points;
+  std::size_t kdtree_get_point_count() const { return points.size(); }
+  double kdtree_get_pt(std::size_t i, std::size_t j) const { return points.coordinates[i * N + j]; }
+  template <class Bbox>
+  bool kdtree_get_bbox(Bbox&) const { return false; }
+};
+
+// Distances reported by this tree are SQUARED Euclidean distances.
+template <int N>
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointSetAdaptor<N>>,
+                                                   PointSetAdaptor<N>, N, std::uint32_t>;
+
+// Leaf size 10 (nanoflann's default): small leaves suit the k = 2 queries that dominate here.
+inline constexpr int kKdTreeLeafSize = 10;
+
+}  // namespace dfvn

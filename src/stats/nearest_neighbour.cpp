@@ -1,0 +1,94 @@
+#include "stats/nearest_neighbour.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "core/dimension.hpp"
+#include "core/parallel.hpp"
+#include "stats/kd_tree.hpp"
+
+namespace dfvn {
+
+// FLANN backend, in its own translation unit (stats/knn_flann.cpp) to keep FLANN's headers apart.
+std::vector<double> nearest_neighbour_distances_flann(const PointSet& points, int threads);
+
+KnnBackend parse_knn_backend(std::string_view name) {
+  if (name == "nanoflann") return KnnBackend::nanoflann;
+  if (name == "flann") return KnnBackend::flann;
+  throw std::invalid_argument("unknown KD-tree backend '" + std::string(name) + "' (allowed: nanoflann, flann)");
+}
+
+std::string_view to_string(KnnBackend backend) { return backend == KnnBackend::nanoflann ? "nanoflann" : "flann"; }
+
+namespace {
+
+template <int N>
+std::vector<double> nearest_neighbour_distances_nanoflann(const PointSet& points, int threads) {
+  const PointSetAdaptor<N> adaptor{points};
+  KdTree<N> tree(N, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(kKdTreeLeafSize));
+  tree.buildIndex();
+  const auto count = static_cast<std::int64_t>(points.size());
+  std::vector<double> distances(static_cast<std::size_t>(count));
+#pragma omp parallel for schedule(dynamic, 4096) num_threads(resolve_threads(threads))
+  for (std::int64_t i = 0; i < count; ++i) {
+    std::uint32_t index[2];
+    double dist2[2];
+    nanoflann::KNNResultSet<double, std::uint32_t> result(2);
+    result.init(index, dist2);
+    tree.findNeighbors(result, points.point(static_cast<std::size_t>(i)), nanoflann::SearchParams());
+    // The point itself is at distance 0, so one of the two results is the nearest other point (or a
+    // duplicate, also at 0); take whichever is not i.
+    const std::uint32_t other = index[0] == static_cast<std::uint32_t>(i) ? index[1] : index[0];
+    distances[static_cast<std::size_t>(i)] = distance_between(points, static_cast<std::size_t>(i), other);
+  }
+  return distances;
+}
+
+}  // namespace
+
+std::vector<double> nearest_neighbour_distances(const PointSet& points, KnnBackend backend, int threads) {
+  if (points.size() < 2) throw std::invalid_argument("nearest-neighbour statistics need at least 2 points");
+  if (backend == KnnBackend::flann) return nearest_neighbour_distances_flann(points, threads);
+  return dispatch_dimension(points.dimension, [&]<int N>() { return nearest_neighbour_distances_nanoflann<N>(points, threads); });
+}
+
+double distance_between(const PointSet& points, std::size_t i, std::size_t j) {
+  const double* a = points.point(i);
+  const double* b = points.point(j);
+  double dist2 = 0.0;
+  for (int k = 0; k < points.dimension; ++k) dist2 += (a[k] - b[k]) * (a[k] - b[k]);
+  return std::sqrt(dist2);
+}
+
+std::vector<double> nearest_neighbour_distances_brute_force(const PointSet& points) {
+  const std::size_t n = points.size();
+  std::vector<double> best(n, std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t k = i + 1; k < n; ++k) {
+      const double d = distance_between(points, i, k);
+      best[i] = std::min(best[i], d);
+      best[k] = std::min(best[k], d);
+    }
+  return best;
+}
+
+NearestNeighbourSummary summarize_nearest_neighbours(std::vector<double> distances, const PointSet& points) {
+  if (distances.empty()) throw std::invalid_argument("no distances to summarise");
+  NearestNeighbourSummary s;
+  s.points = distances.size();
+  double sum = 0.0;  // in index order: the same for any thread count
+  for (double d : distances) sum += d;
+  s.mean = sum / static_cast<double>(distances.size());
+  std::sort(distances.begin(), distances.end());
+  const std::size_t n = distances.size();
+  s.min = distances.front();
+  s.median = (n % 2 == 1) ? distances[n / 2] : 0.5 * (distances[n / 2 - 1] + distances[n / 2]);
+  const double density = static_cast<double>(n) / points.domain.volume(points.dimension);
+  s.median_scaled = s.median * std::pow(density, 1.0 / points.dimension);
+  return s;
+}
+
+}  // namespace dfvn

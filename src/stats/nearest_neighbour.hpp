@@ -1,0 +1,41 @@
+// Nearest-neighbour distances and their summary (Table 1's statistics).
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "sampling/point_set.hpp"
+
+namespace dfvn {
+
+enum class KnnBackend { nanoflann, flann };
+KnnBackend parse_knn_backend(std::string_view name);  // "nanoflann" | "flann"
+std::string_view to_string(KnnBackend backend);
+
+// For every point, the Euclidean distance to its nearest other point (k = 2 self-query on an exact
+// KD-tree; a duplicate point has distance 0). Needs at least 2 points. Independent of thread count.
+// Both backends only find the neighbour; its distance comes from distance_between().
+std::vector<double> nearest_neighbour_distances(const PointSet& points, KnnBackend backend, int threads);
+
+// Euclidean distance between points i and j, summing squared differences over axes in order. Every
+// backend reports distances through this one function, so they agree to the last bit whenever they
+// find the same neighbour (FLANN's own L2 sums in another order).
+double distance_between(const PointSet& points, std::size_t i, std::size_t j);
+
+// Brute force, O(n^2): the reference the KD-trees are tested against.
+std::vector<double> nearest_neighbour_distances_brute_force(const PointSet& points);
+
+struct NearestNeighbourSummary {
+  std::uint64_t points = 0;
+  double min = 0.0;
+  double median = 0.0;  // the mean of the two middle values for an even count (as numpy.median)
+  double mean = 0.0;
+  // median * (points / domain volume)^(1/N): the median in units of the mean spacing, so that sets
+  // of different density compare (a cubic lattice scores 1).
+  double median_scaled = 0.0;
+};
+
+NearestNeighbourSummary summarize_nearest_neighbours(std::vector<double> distances, const PointSet& points);
+
+}  // namespace dfvn

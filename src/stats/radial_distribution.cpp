@@ -1,0 +1,99 @@
+#include "stats/radial_distribution.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "core/dimension.hpp"
+#include "core/hash.hpp"
+#include "core/parallel.hpp"
+#include "stats/kd_tree.hpp"
+
+namespace dfvn {
+
+void RdfOptions::validate() const {
+  if (!std::isfinite(r_max) || r_max < 0.0) throw std::invalid_argument("RDF r_max must be a finite number >= 0");
+  if (bins < 1 || bins > 100000) throw std::invalid_argument("RDF bins must be in 1..100000");
+}
+
+double unit_ball_volume(int dimension) {
+  return std::pow(std::numbers::pi, 0.5 * dimension) / std::tgamma(0.5 * dimension + 1.0);
+}
+
+namespace {
+
+template <int N>
+RdfCurve radial_distribution_impl(const PointSet& points, const RdfOptions& options, std::uint64_t seed, int threads) {
+  const std::size_t n = points.size();
+  if (n < 2) throw std::invalid_argument("the RDF needs at least 2 points");
+  const double side = points.domain.side;
+  const double volume = points.domain.volume(N);
+  RdfCurve curve;
+  curve.r_max = options.r_max > 0.0 ? options.r_max : 2.5 * std::pow(volume / static_cast<double>(n), 1.0 / N);
+  if (curve.r_max >= side) curve.r_max = 0.999 * side;  // the edge correction needs |d_a| < L
+
+  std::vector<std::uint32_t> queries;
+  if (options.max_queries == 0 || n <= options.max_queries) {
+    queries.resize(n);
+    for (std::size_t i = 0; i < n; ++i) queries[i] = static_cast<std::uint32_t>(i);
+  } else {
+    const double keep = static_cast<double>(options.max_queries) / static_cast<double>(n);
+    for (std::size_t i = 0; i < n; ++i)
+      if (random_unit(seed, Stream::rdf_queries, i) < keep) queries.push_back(static_cast<std::uint32_t>(i));
+  }
+  curve.queries = queries.size();
+
+  const PointSetAdaptor<N> adaptor{points};
+  KdTree<N> tree(N, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(kKdTreeLeafSize));
+  tree.buildIndex();
+
+  const int bins = options.bins;
+  const double bin_width = curve.r_max / bins;
+  constexpr std::int64_t kBlock = 64;
+  const auto q = static_cast<std::int64_t>(queries.size());
+  const std::int64_t blocks = (q + kBlock - 1) / kBlock;
+  std::vector<double> histograms(static_cast<std::size_t>(blocks * bins), 0.0);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(resolve_threads(threads))
+  for (std::int64_t b = 0; b < blocks; ++b) {
+    double* histogram = histograms.data() + b * bins;
+    std::vector<std::pair<std::uint32_t, double>> matches;
+    for (std::int64_t k = b * kBlock; k < std::min(q, (b + 1) * kBlock); ++k) {
+      const std::uint32_t i = queries[static_cast<std::size_t>(k)];
+      const double* x = points.point(i);
+      matches.clear();
+      tree.radiusSearch(x, curve.r_max * curve.r_max, matches, nanoflann::SearchParams(32, 0.0f, false));
+      for (const auto& [j, dist2] : matches) {
+        if (j == i) continue;
+        const double r = std::sqrt(dist2);
+        const auto bin = static_cast<int>(r / bin_width);
+        if (bin >= bins) continue;
+        double overlap = 1.0;  // |W intersect (W + d)| for the cube of side L
+        const double* y = points.point(j);
+        for (int a = 0; a < N; ++a) overlap *= side - std::abs(x[a] - y[a]);
+        histogram[bin] += 1.0 / overlap;
+      }
+    }
+  }
+  curve.r.resize(bins);
+  curve.g.assign(bins, 0.0);
+  for (std::int64_t b = 0; b < blocks; ++b)
+    for (int k = 0; k < bins; ++k) curve.g[k] += histograms[static_cast<std::size_t>(b * bins + k)];
+  const double ball = unit_ball_volume(N);
+  const double normalisation = volume * volume / (static_cast<double>(q) * static_cast<double>(n - 1));
+  for (int k = 0; k < bins; ++k) {
+    const double lo = k * bin_width, hi = (k + 1) * bin_width;
+    curve.r[k] = 0.5 * (lo + hi);
+    const double shell = ball * (std::pow(hi, N) - std::pow(lo, N));
+    curve.g[k] *= normalisation / shell;
+  }
+  return curve;
+}
+
+}  // namespace
+
+RdfCurve radial_distribution(const PointSet& points, const RdfOptions& options, std::uint64_t seed, int threads) {
+  options.validate();
+  return dispatch_dimension(points.dimension, [&]<int N>() { return radial_distribution_impl<N>(points, options, seed, threads); });
+}
+
+}  // namespace dfvn

@@ -1,0 +1,39 @@
+// Radial distribution function g(r) of a point set in a box, with translation edge correction.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "sampling/point_set.hpp"
+
+namespace dfvn {
+
+struct RdfOptions {
+  double r_max = 0.0;  // 0: 2.5 mean spacings, 2.5 (volume / points)^(1/N)
+  int bins = 50;
+  // Query points: all when the set is no larger, otherwise a seeded random subset of about this many
+  // (each query still counts its pairs with every other point). 0: all points.
+  std::uint64_t max_queries = 20000;
+
+  void validate() const;  // throws std::invalid_argument naming the option
+};
+
+struct RdfCurve {
+  std::vector<double> r;  // bin centres
+  std::vector<double> g;
+  double r_max = 0.0;
+  std::uint64_t queries = 0;
+};
+
+// g(r) = V^2 / (q (n - 1)) * sum over ordered pairs (i in queries, j != i) with |x_i - x_j| in the bin
+// of w_ij, divided by the N-ball shell volume of the bin; w_ij = 1 / prod_a (L - |x_ia - x_ja|) is the
+// translation edge correction (Ohser and Stoyan 1981) for the cube of side L and volume V. For
+// uniform random points E[g(r)] = 1 at every r, edges and all. (The paper's script divides by
+// shell volume x n x n on a unit volume without correction, so its curves tend to 0.5 and sag.)
+// Independent of thread count: per-block histograms are summed in block order.
+RdfCurve radial_distribution(const PointSet& points, const RdfOptions& options, std::uint64_t seed, int threads);
+
+// Volume of the unit ball in N dimensions, pi^(N/2) / Gamma(N/2 + 1).
+double unit_ball_volume(int dimension);
+
+}  // namespace dfvn

@@ -1,0 +1,73 @@
+#include "stats/radial_distribution.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "sampling/jitter.hpp"
+#include "sampling/lattice.hpp"
+
+namespace dfvn {
+namespace {
+
+TEST(UnitBall, KnownVolumes) {
+  EXPECT_NEAR(unit_ball_volume(2), std::numbers::pi, 1e-14);
+  EXPECT_NEAR(unit_ball_volume(3), 4.0 / 3.0 * std::numbers::pi, 1e-14);
+  EXPECT_NEAR(unit_ball_volume(4), std::numbers::pi * std::numbers::pi / 2.0, 1e-14);
+}
+
+// Uniform random points: g(r) -> 1 at every r, including r comparable to the box (the edge
+// correction). Each bin is compared with its Poisson standard error (pairs counted twice).
+TEST(RadialDistribution, UniformRandomPointsGiveOne) {
+  for (int dimension : {2, 3, 5, 7}) {
+    const std::uint64_t n = dimension <= 3 ? 20000 : 60000;
+    const PointSet p = uniform_random_points(dimension, n, Box{0.0, 1.0}, 77 + dimension, 2);
+    RdfOptions o;
+    o.bins = 20;
+    o.r_max = dimension <= 3 ? 0.25 : 0.5;  // up to half the box: most pairs there need the correction
+    o.max_queries = 0;
+    const RdfCurve c = radial_distribution(p, o, 1, 2);
+    int outside = 0;
+    for (int k = 2; k < o.bins; ++k) {  // the first bins hold few pairs
+      const double lo = k * o.r_max / o.bins, hi = (k + 1) * o.r_max / o.bins;
+      const double expected_pairs = 0.5 * static_cast<double>(n) * static_cast<double>(n - 1) * unit_ball_volume(dimension) *
+                                    (std::pow(hi, dimension) - std::pow(lo, dimension));
+      const double standard_error = 1.0 / std::sqrt(std::max(expected_pairs, 1.0));
+      if (std::abs(c.g[k] - 1.0) > 5.0 * standard_error + 0.01) {
+        ++outside;
+        ADD_FAILURE() << dimension << "D bin " << k << " r=" << c.r[k] << " g=" << c.g[k] << " (se " << standard_error << ")";
+      }
+    }
+    EXPECT_EQ(outside, 0);
+  }
+}
+
+// The paper's estimator (no factor 2, no edge correction) tends to 0.5 and sags: ours must not.
+TEST(RadialDistribution, LatticeHasNoPairsBelowItsSpacing) {
+  const LatticeSpec l{3, 10, Protocol::unit};
+  PointSet p{3, std::vector<double>(3000), Box{0.0, 1.0}};
+  for (std::uint64_t i = 0; i < 1000; ++i) l.point(i, p.coordinates.data() + 3 * i);
+  RdfOptions o;
+  o.r_max = 0.2;
+  o.bins = 20;
+  const RdfCurve c = radial_distribution(p, o, 1, 1);
+  for (int k = 0; k < 9; ++k) EXPECT_EQ(c.g[k], 0.0);  // r < 0.09
+  // The 6 neighbours at exactly 0.1 (bin 9 or 10 by rounding) against 1.3 expected for uniform points.
+  EXPECT_GT(c.g[9] + c.g[10], 3.0);
+}
+
+TEST(RadialDistribution, QuerySubsetIsUnbiasedAndThreadIndependent) {
+  const PointSet p = uniform_random_points(4, 50000, Box{0.0, 1.0}, 5, 2);
+  RdfOptions o;
+  o.bins = 10;
+  o.r_max = 0.3;
+  o.max_queries = 5000;
+  const RdfCurve a = radial_distribution(p, o, 3, 1), b = radial_distribution(p, o, 3, 2);
+  EXPECT_EQ(a.g, b.g);
+  EXPECT_NEAR(static_cast<double>(a.queries), 5000.0, 300.0);
+  for (int k = 3; k < o.bins; ++k) EXPECT_NEAR(a.g[k], 1.0, 0.05);
+}
+
+}  // namespace
+}  // namespace dfvn
