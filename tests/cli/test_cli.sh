@@ -117,5 +117,17 @@ fi
 "$bin" --dim 3 --grid 6 --methods jitter,random --rdf "$work/rdf.csv" --rdf-bins 10 --quiet >/dev/null && ok || bad "rdf run"
 head -1 "$work/rdf.csv" | grep -qx "dim,method,r,g" && [[ $(wc -l <"$work/rdf.csv") -eq 21 ]] && ok || bad "rdf csv shape"
 
+# reproduce
+expect_error "reproduce dims" "" reproduce table1 --dims 2-9 --out "$work/r1"
+expect_message "reproduce dims" "Table 1 covers dimensions 3..7"
+expect_error "reproduce dims text" "" reproduce table1 --dims x --out "$work/r1"
+expect_error "reproduce width" "" reproduce table2 --width 1 --out "$work/r2"
+expect_error "reproduce which" "" reproduce table3
+"$bin" reproduce table2 --width 32 --height 18 --out "$work/r2" --quiet >"$work/t2.md" 2>"$work/err" && ok || bad "reproduce table2: $(cat "$work/err")"
+for f in table2.csv table2.md source.png reference.png rk4-64-newton1.png euler-512.png; do
+  [[ -s $work/r2/$f ]] && ok || bad "reproduce table2 wrote no $f"
+done
+grep -q "paper Euler RMSE" "$work/t2.md" && ok || bad "table2.md on stdout"
+
 echo "cli: $passed passed, $failed failed"
 [[ $failed -eq 0 ]]

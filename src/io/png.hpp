@@ -1,0 +1,13 @@
+// PNG output through libpng.
+#pragma once
+
+#include <string>
+
+#include "warp/image_warp.hpp"
+
+namespace dfvn {
+
+// Writes an 8-bit greyscale PNG, whole or not at all (AtomicOutput). Throws std::runtime_error.
+void write_png(const std::string& path, const GrayImage& image);
+
+}  // namespace dfvn

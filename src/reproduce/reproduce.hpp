@@ -1,0 +1,87 @@
+// One-command reproductions of the paper's Table 1 (with Figure 4) and Table 2 (with Figure 5).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sampling/experiment.hpp"
+#include "warp/image_warp.hpp"
+
+namespace dfvn {
+
+using Log = std::function<void(const std::string&)>;
+
+// ---- Table 1: point sets in 3D-7D (Section 5.1) ----
+
+struct Table1Config {
+  std::vector<int> dimensions = {3, 4, 5, 6, 7};
+  std::uint64_t seed = 1;
+  int threads = 0;
+  CnjOptions cnj;         // our documented defaults (the paper's step and frequency are unpublished)
+  RdfOptions rdf;
+  std::string out_dir = "table1";
+};
+
+// Table 1's K: 10 for 3D-5D, 7 for 6D, 6 for 7D (Section 5.1). Throws for dimensions outside 3..7.
+int table1_grid(int dimension);
+
+// "3-7", "3,5,7" or "4" -> dimensions in 3..7; throws std::invalid_argument otherwise.
+std::vector<int> parse_dimension_list(std::string_view text);
+
+struct Table1Result {
+  std::vector<SampleConfig> configs;               // one per dimension
+  std::vector<std::vector<MethodResult>> results;  // per dimension, per method (cnj, jitter, pds, sobol)
+};
+
+Table1Result run_table1(const Table1Config& config, const StageProgress& progress = {});
+
+// DIR/table1.csv, DIR/rdf.csv, DIR/table1.md; then DIR/figure4.png through scripts/plot_figure4.sh
+// when gnuplot is installed (otherwise `log` says how to get it). Returns the Markdown.
+std::string write_table1(const Table1Config& config, const Table1Result& result, const Log& log);
+std::string table1_markdown(const Table1Result& result);
+
+// ---- Table 2: image warping (Section 5.2) ----
+
+struct Table2Row {
+  WarpVariant variant;
+  double rmse = 0.0;       // against the reference, 8-bit units
+  double seconds = 0.0;    // wall time of the warp
+  double megapixels_per_second = 0.0;
+  std::int64_t field_evaluations = 0;  // deterministic measure of the work
+};
+
+struct Table2Result {
+  WarpConfig config;
+  double reference_seconds = 0.0;
+  int threads = 1;
+  std::vector<Table2Row> rows;
+  std::vector<GrayImage> images;  // per row, then source and reference at the end
+  GrayImage source, reference;
+};
+
+// Euler and RK4, 64 and 512 steps, 0, 1 and 10 Newton reprojection steps (Eq. 12), t = 0.5; the
+// reference is 2048 RK4 steps without reprojection (as the paper's).
+Table2Result run_table2(const WarpConfig& config, const StageProgress& progress = {});
+
+// DIR/table2.csv, DIR/table2.md, DIR/<variant>.png, DIR/source.png, DIR/reference.png and, with
+// gnuplot, DIR/figure5.png (scripts/plot_figure5.sh). Returns the Markdown.
+std::string write_table2(const std::string& out_dir, const Table2Result& result, const Log& log);
+std::string table2_markdown(const Table2Result& result);
+
+// The paper's qualitative claims about Table 2, checked on our numbers.
+struct Table2Conclusions {
+  bool rk4_beats_euler = false;       // lower RMSE at equal steps and reprojection
+  // 1 Newton step lowers RMSE for every integrator and step count (or both are already exact).
+  bool reprojection_lowers_rmse = false;
+  bool rk4_64_reproject_beats_euler_512 = false;  // in RMSE and in measured time
+  bool rk4_64_reproject_does_less_work = false;   // fewer field evaluations than 512 Euler steps
+};
+Table2Conclusions table2_conclusions(const Table2Result& result);
+
+// Runs scripts/<script> DIR if gnuplot is available; logs what happened. True if the figure exists.
+bool plot_figure(const std::string& script, const std::string& out_dir, const std::string& figure, const Log& log);
+
+}  // namespace dfvn
