@@ -35,6 +35,19 @@ inline void gradient_from_hash(std::uint64_t h, double* g) {
 
 }  // namespace
 
+// Odd constants for the vertex hash: the SplitMix64 outputs (mix64 of consecutive golden-ratio
+// multiples), forced odd, so that each axis scrambles differently.
+constexpr std::array<std::uint64_t, kMaxDimension> make_axis_multipliers() {
+  std::array<std::uint64_t, kMaxDimension> k{};
+  for (int j = 0; j < kMaxDimension; ++j) k[j] = mix64(kGoldenGamma * static_cast<std::uint64_t>(j + 1)) | 1U;
+  return k;
+}
+inline constexpr std::array<std::uint64_t, kMaxDimension> kAxisMultipliers = make_axis_multipliers();
+
+template <int N>
+SimplexNoise<N>::SimplexNoise(std::uint64_t seed)
+    : seed_(seed), seed_hash_(mix64(seed ^ static_cast<std::uint64_t>(Stream::noise))) {}
+
 template <int N>
 template <int M>
 NoiseSample<N, M> SimplexNoise<N>::evaluate(const Vec<N>& x, int first_function) const {
@@ -89,8 +102,12 @@ NoiseSample<N, M> SimplexNoise<N>::evaluate(const Vec<N>& x, int first_function)
     const double t3 = t2 * t;
     const double t4 = t2 * t2;
 
-    std::uint64_t vertex_hash = mix64(seed_ ^ static_cast<std::uint64_t>(Stream::noise));
-    for (int j = 0; j < N; ++j) vertex_hash = hash_combine(vertex_hash, static_cast<std::uint64_t>(vertex[j]));
+    // Multiply-then-mix: sum_j vertex_j K_j with distinct odd 64-bit K_j, then one full mix64. The
+    // N products are independent (a serial hash_combine chain cost ~100 cycles per vertex), and two
+    // nearby lattice vertices collide only if sum_j d_j K_j = 0 mod 2^64 for small integers d_j.
+    std::uint64_t key = seed_hash_;
+    for (int j = 0; j < N; ++j) key += static_cast<std::uint64_t>(vertex[j]) * kAxisMultipliers[j];
+    const std::uint64_t vertex_hash = mix64(key);
 
     for (int m = 0; m < M; ++m) {
       // An independent gradient per function: the vertex hash re-mixed with the function index.

@@ -47,7 +47,7 @@ class SimplexNoise {
   static constexpr int kMaxFunctions = N - 1;
   static constexpr double kKernelRadius2 = 0.5;
 
-  explicit SimplexNoise(std::uint64_t seed) : seed_(seed) {}
+  explicit SimplexNoise(std::uint64_t seed);
 
   // Values and gradients of the functions first_function .. first_function + M - 1 at x, computed in
   // one traversal of the simplex. Function indices are in [0, kMaxFunctions).
@@ -61,6 +61,7 @@ class SimplexNoise {
 
  private:
   std::uint64_t seed_;
+  std::uint64_t seed_hash_;  // mix64 of the seed and the noise stream, the start of every vertex hash
 };
 
 extern template class SimplexNoise<2>;

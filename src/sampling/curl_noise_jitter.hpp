@@ -17,9 +17,9 @@ struct CnjOptions {
   // neighbour distance). |c| has RMS 1, so t is also the RMS length of a one-step move.
   // Noise frequency in cycles per lattice spacing: the field's frequency is frequency / spacing.
   // Defaults chosen by scripts/sweep_cnj.py (record: data/cnj_sweep.md): at the RMS move of random
-  // jitter, frequency 0.5 gives the best minimum distance relative to jitter's (0.66 averaged over
-  // 3D-7D) among frequencies >= 0.25, and 0.546 is the step scale that matches jitter's RMS move in 3D.
-  double step_scale = 0.55;
+  // jitter, frequency 0.5 gives the best minimum distance relative to jitter's (0.60 averaged over
+  // 3D-7D) among frequencies >= 0.25, and 0.516 is the step scale that matches jitter's RMS move in 3D.
+  double step_scale = 0.52;
   double frequency = 0.5;
 
   void validate() const;  // throws std::invalid_argument naming the option

@@ -1,0 +1,115 @@
+// Google Benchmark harness for the engine and the statistics (issue: performance).
+// Run: build/bench/bench_engine [--benchmark_filter=...] ; medians with --benchmark_repetitions=5.
+#include <benchmark/benchmark.h>
+
+#include <vector>
+
+#include "core/hash.hpp"
+#include "field/dfvn_field.hpp"
+#include "integrate/trace.hpp"
+#include "noise/simplex_noise.hpp"
+#include "sampling/curl_noise_jitter.hpp"
+#include "sampling/jitter.hpp"
+#include "sampling/lattice.hpp"
+#include "sampling/poisson_disk.hpp"
+#include "stats/nearest_neighbour.hpp"
+
+namespace dfvn {
+namespace {
+
+template <int N>
+std::vector<Vec<N>> bench_points(std::size_t count) {
+  std::vector<Vec<N>> points(count);
+  for (std::size_t i = 0; i < count; ++i)
+    for (int j = 0; j < N; ++j) points[i][j] = 100.0 * random_unit(7, Stream::test, i, static_cast<std::uint64_t>(j));
+  return points;
+}
+
+// Values and gradients of all N-1 functions in one simplex traversal.
+template <int N>
+void BM_NoiseFused(benchmark::State& state) {
+  const SimplexNoise<N> noise(1);
+  const auto points = bench_points<N>(4096);
+  std::size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(noise.evaluate_all(points[i++ & 4095]));
+  state.SetItemsProcessed(state.iterations());
+}
+
+// The same N-1 functions, one traversal each.
+template <int N>
+void BM_NoiseSeparate(benchmark::State& state) {
+  const SimplexNoise<N> noise(1);
+  const auto points = bench_points<N>(4096);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const Vec<N>& x = points[i++ & 4095];
+    for (int m = 0; m < N - 1; ++m) benchmark::DoNotOptimize(noise.template evaluate<1>(x, m));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+template <int N>
+void BM_Field(benchmark::State& state) {
+  const DfvnField<N> field(1, 1.0);
+  const auto points = bench_points<N>(4096);
+  std::size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(field.evaluate(points[i++ & 4095]));
+  state.SetItemsProcessed(state.iterations());
+}
+
+// One CNJ point: one RK4 step with Gauss-Newton reprojection (the default).
+template <int N>
+void BM_Rk4GaussNewtonStep(benchmark::State& state) {
+  const DfvnField<N> field(1, 5.0);
+  const Tracer<N> tracer(field, TraceOptions{});
+  const auto points = bench_points<N>(4096);
+  TraceStats stats;
+  std::size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(tracer.trace(points[i++ & 4095], 0.1, &stats));
+  state.SetItemsProcessed(state.iterations());
+  state.counters["evals_per_point"] = static_cast<double>(stats.field_evaluations) / static_cast<double>(state.iterations());
+}
+
+#define DFVN_BENCH_ALL_DIMENSIONS(name) \
+  BENCHMARK_TEMPLATE(name, 2);          \
+  BENCHMARK_TEMPLATE(name, 3);          \
+  BENCHMARK_TEMPLATE(name, 4);          \
+  BENCHMARK_TEMPLATE(name, 5);          \
+  BENCHMARK_TEMPLATE(name, 6);          \
+  BENCHMARK_TEMPLATE(name, 7);          \
+  BENCHMARK_TEMPLATE(name, 8)
+
+DFVN_BENCH_ALL_DIMENSIONS(BM_NoiseFused);
+DFVN_BENCH_ALL_DIMENSIONS(BM_NoiseSeparate);
+DFVN_BENCH_ALL_DIMENSIONS(BM_Field);
+DFVN_BENCH_ALL_DIMENSIONS(BM_Rk4GaussNewtonStep);
+
+// CNJ on the 6^7 paper lattice (279,936 points), all threads: the 0.5 s target.
+void BM_CnjPaper7D(benchmark::State& state) {
+  const LatticeSpec lattice{7, 6, Protocol::paper};
+  for (auto _ : state) benchmark::DoNotOptimize(curl_noise_jitter(lattice, CnjOptions{}, 1, 0));
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(lattice.point_count()));
+}
+BENCHMARK(BM_CnjPaper7D)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Nearest-neighbour distances of 279,936 jittered 7D points (KD-tree build + k = 2 queries).
+void BM_NearestNeighbours7D(benchmark::State& state) {
+  const PointSet points = jittered_lattice(LatticeSpec{7, 6, Protocol::paper}, 1, 0);
+  const auto backend = state.range(0) == 0 ? KnnBackend::nanoflann : KnnBackend::flann;
+  state.SetLabel(std::string(to_string(backend)));
+  for (auto _ : state) benchmark::DoNotOptimize(nearest_neighbour_distances(points, backend, 0));
+}
+BENCHMARK(BM_NearestNeighbours7D)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Poisson disk on [0,1]^5 with r = 0.1 (about 70,000 points).
+void BM_PoissonDisk5D(benchmark::State& state) {
+  PoissonDiskOptions o;
+  o.radius = 0.1;
+  for (auto _ : state) benchmark::DoNotOptimize(poisson_disk(5, o, 1));
+}
+BENCHMARK(BM_PoissonDisk5D)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+}  // namespace
+}  // namespace dfvn
+
+BENCHMARK_MAIN();
