@@ -30,25 +30,21 @@ constexpr const char* kProgram = "dfvn-sample";
   std::exit(code);
 }
 
-// A finite number > 0 (CLI11's PositiveNumber prints its whole range, DBL_MAX included).
-const CLI::Validator kPositiveFinite(
-    [](std::string& text) -> std::string {
-      double value = 0.0;
-      if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value) || value <= 0.0)
-        return "must be a finite number > 0, got '" + text + "'";
-      return {};
-    },
-    "POSITIVE");
-
-// A finite number >= 0.
-const CLI::Validator kNonNegativeFinite(
-    [](std::string& text) -> std::string {
-      double value = 0.0;
-      if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value) || value < 0.0)
-        return "must be a finite number >= 0, got '" + text + "'";
-      return {};
-    },
-    "NONNEGATIVE");
+// A finite number above (or, with `or_equal`, at least) `bound`. CLI11's PositiveNumber would print
+// its whole range, DBL_MAX included, and accepts no NaN check.
+CLI::Validator finite_number(double bound, bool or_equal, const std::string& name) {
+  const std::string wanted = std::string("a finite number ") + (or_equal ? ">= " : "> ") + fmt::format("{:g}", bound);
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        double value = 0.0;
+        const bool ok = CLI::detail::lexical_cast(text, value) && std::isfinite(value) &&
+                        (or_equal ? value >= bound : value > bound);
+        return ok ? std::string() : "must be " + wanted + ", got '" + text + "'";
+      },
+      name);
+}
+const CLI::Validator kPositiveFinite = finite_number(0.0, false, "POSITIVE");
+const CLI::Validator kNonNegativeFinite = finite_number(0.0, true, "NONNEGATIVE");
 
 // Options that every subcommand shares.
 struct CommonOptions {

@@ -174,7 +174,7 @@ std::string stats_csv_header() {
 }
 
 std::string stats_csv_row(const SampleConfig& config, const MethodResult& r) {
-  return fmt::format("{},{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.3f},{:.3f},{},{},{:.9g},{},\"{}\"\n", config.dimension,
+  return fmt::format("{},{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.6f},{:.6f},{},{},{:.9g},{},\"{}\"\n", config.dimension,
                      config.grid, to_string(r.plan.method), r.nearest.points, r.nearest.min, r.nearest.median,
                      r.nearest.mean, r.nearest.median_scaled, r.seconds_generate, r.seconds_stats, config.seed,
                      to_string(config.protocol), r.plan.domain.side, r.plan.requested, r.notes);

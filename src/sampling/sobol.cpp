@@ -64,15 +64,31 @@ std::uint32_t SobolSequence::digits(std::uint32_t index, int dim) const {
   return x;
 }
 
+namespace {
+
+std::uint32_t reverse_bits(std::uint32_t x) {
+  x = ((x >> 1) & 0x55555555U) | ((x & 0x55555555U) << 1);
+  x = ((x >> 2) & 0x33333333U) | ((x & 0x33333333U) << 2);
+  x = ((x >> 4) & 0x0F0F0F0FU) | ((x & 0x0F0F0F0FU) << 4);
+  x = ((x >> 8) & 0x00FF00FFU) | ((x & 0x00FF00FFU) << 8);
+  return (x >> 16) | (x << 16);
+}
+
+}  // namespace
+
 std::uint32_t owen_scramble(std::uint32_t digits, std::uint64_t seed, int dim) {
-  const std::uint64_t base = random_bits(seed, Stream::sobol_scramble, static_cast<std::uint64_t>(dim));
-  std::uint32_t out = digits;
-  for (int b = 31; b >= 0; --b) {
-    // The digits above b, with a marker bit so that prefixes of different lengths differ.
-    const std::uint64_t prefix = (static_cast<std::uint64_t>(digits) >> (b + 1)) | (std::uint64_t{1} << (31 - b));
-    if (hash_combine(base, prefix) & 1U) out ^= std::uint32_t{1} << b;
-  }
-  return out;
+  const auto key = static_cast<std::uint32_t>(random_bits(seed, Stream::sobol_scramble, static_cast<std::uint64_t>(dim)) >> 32);
+  // Burley 2020, "Practical Hash-based Owen Scrambling" (JCGT 9(4)): with the digits bit-reversed, a
+  // Laine-Karras permutation (adding the key, then x ^= x * even constant) changes each bit only
+  // according to the bits below it, i.e. each original digit according to the digits above it: a
+  // nested (Owen) scramble keyed by the seed and the dimension, in a handful of operations.
+  std::uint32_t x = reverse_bits(digits);
+  x += key;
+  x ^= x * 0x6c50b47cU;
+  x ^= x * 0xb82f1e52U;
+  x ^= x * 0xc7afe638U;
+  x ^= x * 0x8d22f6e6U;
+  return reverse_bits(x);
 }
 
 PointSet sobol_points(int dimension, std::uint64_t count, const Box& domain, Scramble scramble, std::uint64_t seed,

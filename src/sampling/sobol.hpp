@@ -31,9 +31,9 @@ class SobolSequence {
   std::vector<std::array<std::uint32_t, kBits>> directions_;
 };
 
-// Nested uniform (Owen) scrambling of 32 digits: digit b is flipped by a hash of the seed, the
-// dimension and all digits above b, so points that share a prefix get the same flips (Owen 1995;
-// the hashed form of pbrt-v4's OwenScrambler).
+// Nested (Owen 1995) scrambling of 32 digits, hash-based (Burley 2020): every digit is flipped by a
+// function of the seed, the dimension and the digits above it, so points that share a prefix get the
+// same flips and every (0, m, s)-net stays a net.
 std::uint32_t owen_scramble(std::uint32_t digits, std::uint64_t seed, int dim);
 
 // `count` Sobol points scaled to `domain`. With Scramble::none the coordinates are digits / 2^32

@@ -1,0 +1,69 @@
+// The work of one CNJ point in 7D (one RK4 step + Gauss-Newton reprojection on the 6^7 paper lattice):
+// traces the first `points` lattice points on one thread and prints the field evaluations and
+// reprojection updates per point, and the arithmetic floor those need. scripts/count_cnj_work.sh runs
+// it under callgrind at two sizes; the difference in instructions / difference in points is the
+// measured cost per point, to set against the floor.
+//
+// Floor, in arithmetic operations (floating-point operations plus the integer multiplies and mixes
+// of the hash), counted from the algorithm, with every one of the N+1 simplex vertices inside the
+// kernel (an upper floor: vertices outside the kernel cost only their offset and distance):
+//   noise, per evaluation: skew and floor 4N; per vertex: offset update 2N, |d|^2 2N, kernel powers 4,
+//     hash N multiplies + N adds + mix64 (4); per vertex and function: g.d N-1, value 2, gradient 3N+1.
+//   field: scaling 2N(N-1); cross product: LU of N x (N-1), sum_k 2(N-1-k)(N-k) + N pivot divisions,
+//     back substitution (N-1)N, output N.
+//   RK4 combination 10N per step; Gauss-Newton update: Householder QR of N x (N-1), about
+//     2(N-1)^2 (N - (N-1)/3), R^T solve (N-1)^2, Q application 4N(N-1), residual N-1, step N.
+#include <cstdio>
+#include <cstdlib>
+
+#include "integrate/trace.hpp"
+#include "sampling/curl_noise_jitter.hpp"
+#include "sampling/lattice.hpp"
+
+namespace {
+
+constexpr int N = 7;
+
+double floor_per_evaluation() {
+  const double per_vertex = 2 * N + 2 * N + 4 + (2 * N + 4);
+  const double per_function = (N - 1) + 2 + (3 * N + 1);
+  double lu = N;
+  for (int k = 0; k < N - 1; ++k) lu += 2.0 * (N - 1 - k) * (N - k);
+  const double cross = lu + (N - 1) * N + N;
+  return 4 * N + (N + 1) * (per_vertex + (N - 1) * per_function) + 2 * N * (N - 1) + cross;
+}
+
+double floor_per_update() {
+  const double m = N - 1;
+  return 2 * m * m * (N - m / 3) + m * m + 4 * N * m + m + N;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const long points = argc > 1 ? std::atol(argv[1]) : 10000;
+  const dfvn::LatticeSpec lattice{N, 6, dfvn::Protocol::paper};
+  if (points < 1 || points > static_cast<long>(lattice.point_count())) {
+    std::fprintf(stderr, "usage: count_cnj_work [points in 1..%llu]\n", static_cast<unsigned long long>(lattice.point_count()));
+    return 2;
+  }
+  const dfvn::CnjOptions options;
+  const double time = options.step_scale * dfvn::average_neighbour_distance(N) * lattice.spacing();
+  const dfvn::DfvnField<N> field(1, options.frequency / lattice.spacing());
+  const dfvn::Tracer<N> tracer(field, options.trace);
+  dfvn::TraceStats stats;
+  double checksum = 0.0;
+  for (long i = 0; i < points; ++i) {
+    dfvn::Vec<N> x0;
+    lattice.point(static_cast<std::uint64_t>(i), x0.data());
+    checksum += tracer.trace(x0, time, &stats).sum();
+  }
+  const auto per_point = [&](std::int64_t count) { return static_cast<double>(count) / static_cast<double>(points); };
+  const double evaluations = per_point(stats.field_evaluations);
+  const double updates = per_point(stats.reprojection_updates + stats.skipped_updates);
+  const double floor = evaluations * floor_per_evaluation() + updates * floor_per_update() + 10 * N;
+  std::printf("points %ld\nfield_evaluations_per_point %.4f\nreprojection_updates_per_point %.4f\n"
+              "floor_ops_per_evaluation %.0f\nfloor_ops_per_update %.0f\nfloor_ops_per_point %.0f\nchecksum %.17g\n",
+              points, evaluations, updates, floor_per_evaluation(), floor_per_update(), floor, checksum);
+  return 0;
+}
