@@ -46,6 +46,13 @@ CLI::Validator finite_number(double bound, bool or_equal, const std::string& nam
 const CLI::Validator kPositiveFinite = finite_number(0.0, false, "POSITIVE");
 const CLI::Validator kNonNegativeFinite = finite_number(0.0, true, "NONNEGATIVE");
 
+// --dim, checked against the dimensions the library instantiates.
+void add_dimension_option(CLI::App& cmd, int& dimension, const std::string& help) {
+  cmd.add_option("--dim", dimension, help)
+      ->capture_default_str()
+      ->check(CLI::Range(dfvn::kMinDimension, dfvn::kMaxDimension));
+}
+
 // Options that every subcommand shares.
 struct CommonOptions {
   std::uint64_t seed = 1;
@@ -73,9 +80,7 @@ struct FieldCommand {
         "Evaluate the divergence-free field at points read as CSV (N columns a line, optional header).\n"
         "Writes x0..x{N-1},c0..c{N-1},f1..f{N-1}: the point, the field vector c = cross(grad f_1..f_{N-1})\n"
         "(Eq. 8, RMS |c| = 1) and the N-1 noise values, with 17 significant digits.");
-    cmd->add_option("--dim", dimension, "Dimension N of the points (2..8)")
-        ->capture_default_str()
-        ->check(CLI::Range(dfvn::kMinDimension, dfvn::kMaxDimension));
+    add_dimension_option(*cmd, dimension, "Dimension N of the points (2..8)");
     cmd->add_option("--frequency", frequency, "Noise frequency F: f_i(x) = (A_N/F) n_i(F x)")
         ->capture_default_str()
         ->check(kPositiveFinite);
@@ -155,9 +160,7 @@ struct SampleCommand {
         "Jitter a K^N lattice along the DFVN field (curl noise jittering, Section 5.1) and compare it with\n"
         "random jitter, Poisson disk sampling and Sobol points by nearest-neighbour statistics (CSV).\n"
         "This is the default subcommand: 'dfvn-sample --dim 7 --grid 6' runs it.");
-    cmd->add_option("--dim", config.dimension, "Dimension N (2..8)")
-        ->capture_default_str()
-        ->check(CLI::Range(dfvn::kMinDimension, dfvn::kMaxDimension));
+    add_dimension_option(*cmd, config.dimension, "Dimension N (2..8)");
     cmd->add_option("--grid", config.grid, "Lattice points per axis K (>= 2); K^N points")
         ->capture_default_str()
         ->check(CLI::Range(2, 1 << 30));
