@@ -159,7 +159,9 @@ struct SampleCommand {
         "sample",
         "Jitter a K^N lattice along the DFVN field (curl noise jittering, Section 5.1) and compare it with\n"
         "random jitter, Poisson disk sampling and Sobol points by nearest-neighbour statistics (CSV).\n"
-        "This is the default subcommand: 'dfvn-sample --dim 7 --grid 6' runs it.");
+        "This is the default subcommand: 'dfvn-sample --dim 7 --grid 6' runs it. Other subcommands:\n"
+        "'dfvn-sample field' (evaluate the field at points) and 'dfvn-sample reproduce table1|table2' (the\n"
+        "paper's tables and figures); each has --help.");
     add_dimension_option(*cmd, config.dimension, "Dimension N (2..8)");
     cmd->add_option("--grid", config.grid, "Lattice points per axis K (>= 2); K^N points")
         ->capture_default_str()
