@@ -17,7 +17,7 @@
 #include "field/evaluate_points.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
-#include "io/npy.hpp"
+#include "io/point_file.hpp"
 #include "reproduce/reproduce.hpp"
 #include "sampling/experiment.hpp"
 
@@ -110,13 +110,18 @@ struct FieldCommand {
     query.seed = common.seed;
     query.frequency = frequency;
     query.threads = common.threads;
-    const std::string csv = dfvn::evaluate_field_csv(query, points);
-    dfvn::AtomicOutput out(output);
-    out.stream() << csv;
-    out.commit();
+    dfvn::write_file_atomically(output, dfvn::evaluate_field_csv(query, points));
   }
 };
 
+
+// Creates `dir` (and parents) and checks a file can be written in it.
+void make_output_dir(const std::string& dir) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error || !std::filesystem::is_directory(dir)) throw std::runtime_error("cannot create directory '" + dir + "'");
+  dfvn::check_writable((std::filesystem::path(dir) / "probe").string());
+}
 
 // Progress on stderr, only when it is a terminal and --quiet is not given.
 class Progress {
@@ -246,33 +251,16 @@ struct SampleCommand {
     dfvn::check_writable(stats_path);
     if (!rdf_path.empty()) dfvn::check_writable(rdf_path);
     if (!points_dir.empty()) {
-      std::error_code error;
-      std::filesystem::create_directories(points_dir, error);
-      if (error || !std::filesystem::is_directory(points_dir))
-        throw std::runtime_error("cannot create directory '" + points_dir + "'");
+      make_output_dir(points_dir);
       for (dfvn::Method m : config.methods) dfvn::check_writable(point_file(m));
     }
 
+    const dfvn::PointFormat point_format = dfvn::parse_point_format(format);
     Progress progress(!quiet);
     const auto results = dfvn::run_sampling(
         config, false, [&](std::string_view stage, double f) { progress(stage, f); },
         [&](const dfvn::MethodResult& r) {
-          if (points_dir.empty()) return;
-          dfvn::AtomicOutput out(point_file(r.plan.method));
-          if (format == "npy") {
-            dfvn::write_npy(out.stream(), r.points);
-          } else {
-            std::string text = dfvn::numbered_header("x", r.points.dimension) + '\n';
-            for (std::size_t i = 0; i < r.points.size(); ++i) {
-              for (int j = 0; j < r.points.dimension; ++j) {
-                if (j) text += ',';
-                dfvn::append_double(text, r.points.point(i)[j]);
-              }
-              text += '\n';
-            }
-            out.stream() << text;
-          }
-          out.commit();
+          if (!points_dir.empty()) dfvn::write_point_file(point_file(r.plan.method), r.points, point_format);
         });
     progress.finish();
 
@@ -282,14 +270,8 @@ struct SampleCommand {
       stats += dfvn::stats_csv_row(config, r);
       rdf += dfvn::rdf_csv_rows(config, r);
     }
-    if (!rdf_path.empty()) {
-      dfvn::AtomicOutput out(rdf_path);
-      out.stream() << rdf;
-      out.commit();
-    }
-    dfvn::AtomicOutput out(stats_path);
-    out.stream() << stats;
-    out.commit();
+    if (!rdf_path.empty()) dfvn::write_file_atomically(rdf_path, rdf);
+    dfvn::write_file_atomically(stats_path, stats);
   }
 
   std::string point_file(dfvn::Method m) const {
@@ -297,12 +279,6 @@ struct SampleCommand {
   }
 };
 
-void make_output_dir(const std::string& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  if (error || !std::filesystem::is_directory(dir)) throw std::runtime_error("cannot create directory '" + dir + "'");
-  dfvn::check_writable((std::filesystem::path(dir) / "probe").string());
-}
 
 struct ReproduceCommand {
   CommonOptions common1, common2;

@@ -53,6 +53,12 @@ void AtomicOutput::commit() {
   committed_ = true;
 }
 
+void write_file_atomically(const std::string& path, const std::string& text) {
+  AtomicOutput out(path);
+  out.stream() << text;
+  out.commit();
+}
+
 void check_writable(const std::string& path) {
   if (path == "-") return;
   if (std::filesystem::is_directory(path)) throw std::runtime_error("cannot write '" + path + "': it is a directory");

@@ -30,6 +30,9 @@ class AtomicOutput {
   bool committed_ = false;
 };
 
+// Writes `text` to `path` ("-" = standard output) whole or not at all. Throws std::runtime_error.
+void write_file_atomically(const std::string& path, const std::string& text);
+
 // Throws std::runtime_error if a file cannot be created in the folder of path (checked before long
 // computations, so a bad path fails fast instead of after minutes of work).
 void check_writable(const std::string& path);

@@ -206,11 +206,8 @@ std::string write_table1(const Table1Config& config, const Table1Result& result,
       rdf += rdf_csv_rows(result.configs[d], r);
     }
   const std::string md = table1_markdown(result);
-  for (const auto& [name, text] : {std::pair{"table1.csv", stats}, {"rdf.csv", rdf}, {"table1.md", md}}) {
-    AtomicOutput out((std::filesystem::path(dir) / name).string());
-    out.stream() << text;
-    out.commit();
-  }
+  for (const auto& [name, text] : {std::pair{"table1.csv", stats}, {"rdf.csv", rdf}, {"table1.md", md}})
+    write_file_atomically((std::filesystem::path(dir) / name).string(), text);
   plot_figure("plot_figure4.sh", dir, "figure4.png", log);
   return md;
 }

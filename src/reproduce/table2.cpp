@@ -1,9 +1,9 @@
-#include <chrono>
 #include <filesystem>
 
 #include <fmt/format.h>
 
 #include "core/parallel.hpp"
+#include "core/stopwatch.hpp"
 #include "io/atomic_file.hpp"
 #include "io/png.hpp"
 #include "reproduce/paper_tables.hpp"
@@ -12,10 +12,6 @@
 namespace dfvn {
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 const Table2Row* find_row(const Table2Result& r, Integrator integrator, int steps, int newton) {
   for (const auto& row : r.rows)
@@ -32,9 +28,9 @@ Table2Result run_table2(const WarpConfig& config, const StageProgress& progress)
   result.threads = resolve_threads(config.threads);
   result.source = source_image(config);
   if (progress) progress("reference", 0.0);
-  auto start = std::chrono::steady_clock::now();
+  Stopwatch stopwatch;
   result.reference = warp_image(config, WarpVariant{Integrator::rk4, 2048, 0});
-  result.reference_seconds = seconds_since(start);
+  result.reference_seconds = stopwatch.seconds();
   const double megapixels = static_cast<double>(config.width) * config.height * 1e-6;
   int done = 0;
   for (int steps : {64, 512})
@@ -42,12 +38,12 @@ Table2Result run_table2(const WarpConfig& config, const StageProgress& progress)
       for (Integrator integrator : {Integrator::euler, Integrator::rk4}) {
         const WarpVariant variant{integrator, steps, newton};
         if (progress) progress(variant.label(), done++ / 12.0);
-        start = std::chrono::steady_clock::now();
+        stopwatch.restart();
         std::int64_t evaluations = 0;
         GrayImage image = warp_image(config, variant, &evaluations);
         Table2Row row;
         row.variant = variant;
-        row.seconds = seconds_since(start);
+        row.seconds = stopwatch.seconds();
         row.megapixels_per_second = megapixels / row.seconds;
         row.rmse = rmse(image, result.reference);
         row.field_evaluations = evaluations;
@@ -140,11 +136,7 @@ std::string write_table2(const std::string& out_dir, const Table2Result& r, cons
                        row.variant.newton_steps, row.rmse, row.seconds, row.megapixels_per_second, r.config.width,
                        r.config.height, r.threads, row.field_evaluations);
   const std::string md = table2_markdown(r);
-  for (const auto& [name, text] : {std::pair{"table2.csv", csv}, {"table2.md", md}}) {
-    AtomicOutput out(path(name));
-    out.stream() << text;
-    out.commit();
-  }
+  for (const auto& [name, text] : {std::pair{"table2.csv", csv}, {"table2.md", md}}) write_file_atomically(path(name), text);
   for (std::size_t i = 0; i < r.rows.size(); ++i) write_png(path(r.rows[i].variant.label() + ".png"), r.images[i]);
   write_png(path("source.png"), r.source);
   write_png(path("reference.png"), r.reference);

@@ -1,6 +1,5 @@
 #include "sampling/experiment.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -9,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/dimension.hpp"
+#include "core/stopwatch.hpp"
 #include "sampling/jitter.hpp"
 #include "sampling/poisson_disk.hpp"
 
@@ -20,10 +20,6 @@ double physical_memory_bytes() {
   const long pages = ::sysconf(_SC_PHYS_PAGES);
   const long page_size = ::sysconf(_SC_PAGE_SIZE);
   return (pages > 0 && page_size > 0) ? static_cast<double>(pages) * static_cast<double>(page_size) : 8.0 * (1ULL << 30);
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace
@@ -149,14 +145,14 @@ std::vector<MethodResult> run_sampling(const SampleConfig& config, bool keep_poi
     MethodResult result;
     result.plan = plan_method(config, method);
     if (progress) progress(to_string(method), 0.0);
-    auto start = std::chrono::steady_clock::now();
+    Stopwatch stopwatch;
     result.points = generate_points(config, result.plan, result.notes, progress);
-    result.seconds_generate = seconds_since(start);
+    result.seconds_generate = stopwatch.seconds();
     if (progress) progress("statistics", 0.0);
-    start = std::chrono::steady_clock::now();
+    stopwatch.restart();
     result.nearest = summarize_nearest_neighbours(nearest_neighbour_distances(result.points, config.knn, config.threads),
                                                   result.points);
-    result.seconds_stats = seconds_since(start);
+    result.seconds_stats = stopwatch.seconds();
     if (config.compute_rdf) {
       if (progress) progress("rdf", 0.0);
       result.rdf = radial_distribution(result.points, config.rdf, config.seed, config.threads);

@@ -1,10 +1,15 @@
-#include "io/npy.hpp"
+#include "io/point_file.hpp"
 
 #include <bit>
 #include <cstdint>
 #include <string>
 
 #include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "io/atomic_file.hpp"
+#include "io/csv.hpp"
 
 namespace dfvn {
 
@@ -24,6 +29,31 @@ void write_npy(std::ostream& out, const PointSet& points) {
   out.write(header.data(), static_cast<std::streamsize>(header.size()));
   out.write(reinterpret_cast<const char*>(points.coordinates.data()),
             static_cast<std::streamsize>(points.coordinates.size() * sizeof(double)));
+}
+
+std::string points_csv(const PointSet& points) {
+  std::string text = numbered_header("x", points.dimension) + '\n';
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (int j = 0; j < points.dimension; ++j) {
+      if (j) text += ',';
+      append_double(text, points.point(i)[j]);
+    }
+    text += '\n';
+  }
+  return text;
+}
+
+PointFormat parse_point_format(std::string_view name) {
+  if (name == "csv") return PointFormat::csv;
+  if (name == "npy") return PointFormat::npy;
+  throw std::invalid_argument("unknown point format '" + std::string(name) + "' (allowed: csv, npy)");
+}
+
+void write_point_file(const std::string& path, const PointSet& points, PointFormat format) {
+  if (format == PointFormat::csv) return write_file_atomically(path, points_csv(points));
+  AtomicOutput out(path);
+  write_npy(out.stream(), points);
+  out.commit();
 }
 
 }  // namespace dfvn

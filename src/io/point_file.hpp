@@ -1,0 +1,22 @@
+// Point-set files: CSV with header x0..x{N-1} (17 significant digits), or NumPy .npy (format 1.0:
+// float64, shape (points, N), C order; numpy.load reads it).
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <string_view>
+
+#include "sampling/point_set.hpp"
+
+namespace dfvn {
+
+void write_npy(std::ostream& out, const PointSet& points);
+std::string points_csv(const PointSet& points);
+
+enum class PointFormat { csv, npy };
+PointFormat parse_point_format(std::string_view name);  // "csv" | "npy"
+
+// Writes the points to `path`, whole or not at all. Throws std::runtime_error.
+void write_point_file(const std::string& path, const PointSet& points, PointFormat format);
+
+}  // namespace dfvn
