@@ -53,6 +53,15 @@ void add_dimension_option(CLI::App& cmd, int& dimension, const std::string& help
       ->check(CLI::Range(dfvn::kMinDimension, dfvn::kMaxDimension));
 }
 
+// --noise: the basis of the N-1 noise functions.
+void add_noise_option(CLI::App& cmd, std::string& noise) {
+  cmd.add_option("--noise", noise,
+                 "Noise basis of the N-1 functions: turning-bands (healthy in every dimension) or simplex (the\n"
+                 "paper's construction; its field is nearly still in most of space from 4D on)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"simplex", "turning-bands"}));
+}
+
 // Options that every subcommand shares.
 struct CommonOptions {
   std::uint64_t seed = 1;
@@ -71,6 +80,7 @@ struct FieldCommand {
   CommonOptions common;
   int dimension = 3;
   double frequency = 1.0;
+  std::string noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
   std::string input;
   std::string output = "-";
 
@@ -81,9 +91,12 @@ struct FieldCommand {
         "Writes x0..x{N-1},c0..c{N-1},f1..f{N-1}: the point, the field vector c = cross(grad f_1..f_{N-1})\n"
         "(Eq. 8, RMS |c| = 1) and the N-1 noise values, with 17 significant digits.");
     add_dimension_option(*cmd, dimension, "Dimension N of the points (2..8)");
-    cmd->add_option("--frequency", frequency, "Noise frequency F: f_i(x) = (A_N/F) n_i(F x)")
+    cmd->add_option("--frequency", frequency,
+                    "Noise frequency F in cycles per unit length (one cycle = 2 pi / k_eff of the basis):\n"
+                    "f_i(x) = (A/s) n_i(s x) with s = 2 pi F / k_eff")
         ->capture_default_str()
         ->check(kPositiveFinite);
+    add_noise_option(*cmd, noise);
     cmd->add_option("--input", input, "CSV file of points (default: standard input)")->check(CLI::ExistingFile);
     cmd->add_option("--output", output, "Output CSV file, written whole or not at all ('-' = standard output)")
         ->capture_default_str();
@@ -108,7 +121,7 @@ struct FieldCommand {
     dfvn::FieldQuery query;
     query.dimension = dimension;
     query.seed = common.seed;
-    query.frequency = frequency;
+    query.field = {dfvn::parse_noise_basis(noise), frequency};
     query.threads = common.threads;
     dfvn::write_file_atomically(output, dfvn::evaluate_field_csv(query, points));
   }
@@ -151,6 +164,7 @@ struct SampleCommand {
   std::string protocol = "paper";
   std::string knn = "nanoflann";
   std::string integrator = "rk4";
+  std::string noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
   std::string reproject = "gauss-newton";
   std::string scramble = "owen";
   std::string stats_path = "-";
@@ -203,9 +217,11 @@ struct SampleCommand {
                     "lattice neighbours (Section 5.1); RMS |c| = 1, so t is the RMS move")
         ->capture_default_str()
         ->check(kPositiveFinite);
-    cmd->add_option("--frequency", config.cnj.frequency, "CNJ noise frequency in cycles per lattice spacing")
+    cmd->add_option("--frequency", config.cnj.frequency,
+                    "CNJ noise frequency in cycles per lattice spacing (one cycle = 2 pi / k_eff of the basis)")
         ->capture_default_str()
         ->check(kPositiveFinite);
+    add_noise_option(*cmd, noise);
     cmd->add_option("--reproject", reproject, "CNJ reprojection after each step: none, newton (Eq. 12), gauss-newton (Eq. 10-11)")
         ->capture_default_str()
         ->check(CLI::IsMember({"none", "newton", "gauss-newton"}));
@@ -236,6 +252,7 @@ struct SampleCommand {
     config.knn = dfvn::parse_knn_backend(knn);
     config.scramble = dfvn::parse_scramble(scramble);
     config.cnj.trace.integrator = dfvn::parse_integrator(integrator);
+    config.cnj.noise = dfvn::parse_noise_basis(noise);
     config.cnj.trace.reprojection = dfvn::parse_reprojection(reproject);
     config.methods.clear();
     for (const auto& name : CLI::detail::split(methods, ',')) {

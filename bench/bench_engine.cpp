@@ -50,7 +50,7 @@ void BM_NoiseSeparate(benchmark::State& state) {
 
 template <int N>
 void BM_Field(benchmark::State& state) {
-  const DfvnField<N> field(1, 1.0);
+  const DfvnField<N> field(1, FieldOptions{NoiseBasis::simplex, 1.0});
   const auto points = bench_points<N>(4096);
   std::size_t i = 0;
   for (auto _ : state) benchmark::DoNotOptimize(field.evaluate(points[i++ & 4095]));
@@ -60,7 +60,7 @@ void BM_Field(benchmark::State& state) {
 // One CNJ point: one RK4 step with Gauss-Newton reprojection (the default).
 template <int N>
 void BM_Rk4GaussNewtonStep(benchmark::State& state) {
-  const DfvnField<N> field(1, 5.0);
+  const DfvnField<N> field(1, FieldOptions{NoiseBasis::simplex, 5.0});
   const Tracer<N> tracer(field, TraceOptions{});
   const auto points = bench_points<N>(4096);
   TraceStats stats;

@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
   }
   const dfvn::CnjOptions options;
   const double time = options.step_scale * dfvn::average_neighbour_distance(N) * lattice.spacing();
-  const dfvn::DfvnField<N> field(1, options.frequency / lattice.spacing());
+  const dfvn::DfvnField<N> field(1, dfvn::FieldOptions{options.noise, options.frequency / lattice.spacing()});
   const dfvn::Tracer<N> tracer(field, options.trace);
   dfvn::TraceStats stats;
   double checksum = 0.0;

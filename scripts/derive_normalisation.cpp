@@ -1,4 +1,4 @@
-// Derives the per-dimension amplitudes A_N of src/field/normalisation.hpp.
+// Derives the per-dimension amplitudes A_N of src/noise/simplex_normalisation.hpp.
 //
 // Procedure: for each N, evaluate the raw field (A = 1, frequency 1) at `samples` points drawn
 // uniformly from [0, 1000]^N (far more simplex cells than samples, so the points see independent
@@ -14,7 +14,8 @@
 
 #include "core/dimension.hpp"
 #include "core/hash.hpp"
-#include "field/dfvn_field.hpp"
+#include "field/cross_product.hpp"
+#include "noise/simplex_noise.hpp"
 
 int main(int argc, char** argv) {
   const long samples = argc > 1 ? std::atol(argv[1]) : 200000;
@@ -29,13 +30,13 @@ int main(int argc, char** argv) {
       double sum = 0.0, sum2 = 0.0;
       const double total = static_cast<double>(samples) * seeds;
       for (int s = 0; s < seeds; ++s) {
-        const dfvn::DfvnField<N> field(1000 + static_cast<std::uint64_t>(s), 1.0, 1.0);
+        const dfvn::SimplexNoise<N> noise(1000 + static_cast<std::uint64_t>(s));
         for (long i = 0; i < samples; ++i) {
           dfvn::Vec<N> x;
           for (int j = 0; j < N; ++j)
             x[j] = 1000.0 * dfvn::random_unit(static_cast<std::uint64_t>(s), dfvn::Stream::test,
                                               static_cast<std::uint64_t>(i), static_cast<std::uint64_t>(j));
-          const double c2 = field.velocity(x).squaredNorm();
+          const double c2 = dfvn::cross<N>(noise.evaluate_all(x).gradient).squaredNorm();
           sum += c2;
           sum2 += c2 * c2;
         }

@@ -11,7 +11,7 @@ Rule: the default frequency is the one with the best nn_min relative to jitter's
 dimensions, among frequencies of at least 0.25 cycles per lattice spacing: below that, neighbouring
 points move almost as one block (the lattice is translated, not jittered) and nn_min rewards it.
 The default step scale is the matched one in 3D: from 4D on the RMS move is carried by rare fast
-points (median/RMS of |c| is 0.07 in 4D and 1e-14 in 7D, src/field/normalisation.hpp), so matching
+points (median/RMS of |c| is 0.07 in 4D and 1e-14 in 7D, src/noise/simplex_normalisation.hpp), so matching
 RMS there leaves most points unmoved; in 3D the RMS describes the typical move.
 
 Usage: scripts/sweep_cnj.py [--binary build/dfvn-sample] [--out data/cnj_sweep] [--seed 1]

@@ -29,6 +29,7 @@ enum class Stream : std::uint64_t {
   poisson_disk = 4,
   sobol_scramble = 5,
   rdf_queries = 6,
+  turning_bands = 7,
   test = 99,
 };
 

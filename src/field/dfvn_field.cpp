@@ -1,27 +1,36 @@
 #include "field/dfvn_field.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
-#include <string>
+
+#include <fmt/format.h>
 
 #include "field/cross_product.hpp"
 
 namespace dfvn {
 
+void FieldOptions::validate() const {
+  if (!std::isfinite(frequency) || !(frequency > 0.0))
+    throw std::invalid_argument(fmt::format("frequency must be finite and positive, got {}", frequency));
+}
+
 template <int N>
-DfvnField<N>::DfvnField(std::uint64_t seed, double frequency, double amplitude)
-    : noise_(seed), frequency_(frequency), amplitude_(amplitude) {
-  if (!std::isfinite(frequency) || frequency <= 0.0)
-    throw std::invalid_argument("frequency must be finite and positive, got " + std::to_string(frequency));
-  if (!std::isfinite(amplitude) || amplitude <= 0.0)
-    throw std::invalid_argument("amplitude must be finite and positive, got " + std::to_string(amplitude));
+DfvnField<N>::DfvnField(std::uint64_t seed, const FieldOptions& options)
+    : noise_((options.validate(), make_noise_functions<N>(options.noise, seed))),
+      options_(options),
+      seed_(seed),
+      scale_(2.0 * std::numbers::pi * options.frequency / noise_->wavenumber()),
+      amplitude_(noise_->amplitude()) {
+  if (!std::isfinite(scale_) || !(scale_ > 0.0))
+    throw std::invalid_argument(fmt::format("frequency {} is outside the range the noise supports", options.frequency));
 }
 
 template <int N>
 FieldSample<N> DfvnField<N>::evaluate(const Vec<N>& x) const {
-  const NoiseSample<N, N - 1> noise = noise_.evaluate_all(frequency_ * x);
+  const NoiseSample<N, N - 1> noise = noise_->evaluate(scale_ * x);
   FieldSample<N> out;
-  const double value_scale = amplitude_ / frequency_;
+  const double value_scale = amplitude_ / scale_;
   for (int i = 0; i < N - 1; ++i) {
     out.value[i] = value_scale * noise.value[i];
     out.gradient[i] = amplitude_ * noise.gradient[i];

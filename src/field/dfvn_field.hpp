@@ -3,10 +3,10 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 
 #include "core/dimension.hpp"
-#include "field/normalisation.hpp"
-#include "noise/simplex_noise.hpp"
+#include "noise/noise_functions.hpp"
 
 namespace dfvn {
 
@@ -17,30 +17,44 @@ struct FieldSample {
   std::array<Vec<N>, N - 1> gradient;    // grad f_i(x)
 };
 
-// f_i(x) = (A_N / F) n_i(F x), where n_i are the N-1 simplex noise functions of one seed, F is the
-// frequency and A_N the per-dimension amplitude of normalisation.hpp. Then grad f_i(x) = A_N
-// grad n_i(F x), so c = cross(grad f_i) has an RMS magnitude of 1 over space for every dimension and
-// every frequency: the frequency changes how fast the field varies, never how fast points move.
-// Scaling the f_i by constants does not change their iso-contours, so reprojection (Eq. 10-12)
-// keeps working on exactly the curves that c is tangent to.
+struct FieldOptions {
+  NoiseBasis noise = kDefaultNoiseBasis;
+  // Cycles per unit length, the same for every basis: one cycle is 2 pi / k_eff long, where
+  // k_eff = sqrt(E|grad f|^2 / E f^2) is the basis's effective wavenumber (NoiseFunctions::wavenumber).
+  double frequency = 1.0;
+
+  void validate() const;  // throws std::invalid_argument unless the frequency is finite and positive
+};
+
+// f_i(x) = (A / s) n_i(s x) with n_i the N-1 functions of the basis, s = 2 pi F / k_eff the scale that
+// gives F cycles per unit length, and A the basis's amplitude. Then grad f_i(x) = A grad n_i(s x), so
+// c = cross(grad f_i) has an RMS magnitude of 1 over space for every dimension, basis and frequency:
+// the frequency changes how fast the field varies, never how fast points move. Scaling the f_i by
+// constants does not change their iso-contours, so reprojection (Eq. 10-12) keeps working on exactly
+// the curves that c is tangent to.
 template <int N>
 class DfvnField {
  public:
   static constexpr int kFunctions = N - 1;
 
-  // Throws std::invalid_argument unless frequency and amplitude are finite and positive.
-  DfvnField(std::uint64_t seed, double frequency = 1.0, double amplitude = field_amplitude(N));
+  // Throws std::invalid_argument for a bad frequency or basis.
+  explicit DfvnField(std::uint64_t seed, const FieldOptions& options = {});
 
   FieldSample<N> evaluate(const Vec<N>& x) const;
   Vec<N> velocity(const Vec<N>& x) const { return evaluate(x).velocity; }
 
-  double frequency() const { return frequency_; }
-  double amplitude() const { return amplitude_; }
-  std::uint64_t seed() const { return noise_.seed(); }
+  const FieldOptions& options() const { return options_; }
+  double frequency() const { return options_.frequency; }
+  double scale() const { return scale_; }          // s: x -> s x in the basis's own units
+  double amplitude() const { return amplitude_; }  // A
+  double wavenumber() const { return noise_->wavenumber(); }  // k_eff of the raw basis
+  std::uint64_t seed() const { return seed_; }
 
  private:
-  SimplexNoise<N> noise_;
-  double frequency_;
+  std::shared_ptr<const NoiseFunctions<N>> noise_;  // shared: a field is cheap to copy
+  FieldOptions options_;
+  std::uint64_t seed_;
+  double scale_;
   double amplitude_;
 };
 

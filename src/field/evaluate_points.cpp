@@ -13,7 +13,7 @@ std::string evaluate_field_csv(const FieldQuery& query, const PointTable& points
     throw std::invalid_argument("point table has dimension " + std::to_string(points.dimension) +
                                 ", query has " + std::to_string(query.dimension));
   return dispatch_dimension(query.dimension, [&]<int N>() {
-    const DfvnField<N> field(query.seed, query.frequency);
+    const DfvnField<N> field(query.seed, query.field);
     const auto rows = static_cast<std::int64_t>(points.rows());
     // Rows are formatted in fixed blocks and joined in order, so the output is the same for any
     // number of threads.

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 
+#include "field/dfvn_field.hpp"
 #include "io/csv.hpp"
 
 namespace dfvn {
@@ -11,7 +12,7 @@ namespace dfvn {
 struct FieldQuery {
   int dimension = 3;
   std::uint64_t seed = 1;
-  double frequency = 1.0;
+  FieldOptions field;  // noise basis and frequency
   int threads = 0;  // 0: all cores
 };
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/hash.hpp"
+#include "noise/simplex_normalisation.hpp"
 
 namespace dfvn {
 namespace {
@@ -123,10 +124,42 @@ NoiseSample<N, M> SimplexNoise<N>::evaluate(const Vec<N>& x, int first_function)
   return out;
 }
 
+// k_eff of simplex noise in closed form. Each vertex v contributes k(|d|^2) (g_v . d), d = x - v, with
+// gradients independent between vertices, zero mean and E[g g^T] = (E|g|^2 / N) I (both gradient sets
+// above are symmetric under axis permutations and sign flips). Cross terms vanish in expectation, and
+// averaging over x sums the single-vertex terms over the whole lattice, so with
+// rho = |d|, k' = dk/ds = -4 (r^2 - s)^3 and s = rho^2:
+//   E n^2      ~ int rho^(N-1) k^2 rho^2 / N drho,
+//   E |grad n|^2 ~ int rho^(N-1) [k^2 + (4 k k' rho^2 + 4 k'^2 rho^4) / N] drho
+// (grad of k (g.d) is k g + 2 k' (g.d) d, and E (g.d)^2 = E|g|^2 rho^2 / N), with the same factor
+// (vertex density, sphere area, E|g|^2) in front of both: it cancels in the ratio. The integrands are
+// polynomials of degree < 40, so Simpson's rule on 2000 intervals is exact to rounding.
+// tests/noise/test_noise_bases.cpp checks the result against a measurement.
+double simplex_wavenumber(int dimension) {
+  const double r2 = SimplexNoise<2>::kKernelRadius2;
+  const int intervals = 2000;
+  const double h = std::sqrt(r2) / intervals;
+  double value = 0.0, gradient = 0.0;
+  for (int k = 0; k <= intervals; ++k) {
+    const double rho = k * h, s = rho * rho;
+    const double weight = (k == 0 || k == intervals) ? 1.0 : (k % 2 ? 4.0 : 2.0);
+    const double t = r2 - s, kernel = t * t * t * t, slope = -4.0 * t * t * t;
+    const double surface = std::pow(rho, dimension - 1);
+    value += weight * surface * kernel * kernel * s / dimension;
+    gradient += weight * surface * (kernel * kernel + (4.0 * kernel * slope * s + 4.0 * slope * slope * s * s) / dimension);
+  }
+  return std::sqrt(gradient / value);
+}
+
+template <int N>
+SimplexNoiseFunctions<N>::SimplexNoiseFunctions(std::uint64_t seed)
+    : noise_(seed), wavenumber_(simplex_wavenumber(N)), amplitude_(simplex_field_amplitude(N)) {}
+
 // Every dimension with the fused (all N-1 functions) and the single-function traversal; in 2D the
 // two are the same instantiation.
 #define DFVN_INSTANTIATE_NOISE(N)                                                             \
   template class SimplexNoise<N>;                                                             \
+  template class SimplexNoiseFunctions<N>;                                                    \
   template NoiseSample<N, N - 1> SimplexNoise<N>::evaluate<N - 1>(const Vec<N>&, int) const;
 
 #define DFVN_INSTANTIATE_NOISE_SINGLE(N) \

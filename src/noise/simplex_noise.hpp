@@ -5,15 +5,9 @@
 #include <cstdint>
 
 #include "core/dimension.hpp"
+#include "noise/noise_functions.hpp"
 
 namespace dfvn {
-
-// Values and gradients of M scalar noise functions at one point.
-template <int N, int M>
-struct NoiseSample {
-  std::array<double, M> value;
-  std::array<Vec<N>, M> gradient;
-};
 
 // Simplex noise (Perlin 2002, as explained by Gustavson 2005) on R^N.
 //
@@ -62,6 +56,24 @@ class SimplexNoise {
  private:
   std::uint64_t seed_;
   std::uint64_t seed_hash_;  // mix64 of the seed and the noise stream, the start of every vertex hash
+};
+
+// k_eff = sqrt(E|grad n|^2 / E n^2) of SimplexNoise<N>, in closed form (see simplex_noise.cpp).
+double simplex_wavenumber(int dimension);
+
+// The basis interface over SimplexNoise<N>, with the amplitudes of simplex_normalisation.hpp.
+template <int N>
+class SimplexNoiseFunctions final : public NoiseFunctions<N> {
+ public:
+  explicit SimplexNoiseFunctions(std::uint64_t seed);
+  NoiseSample<N, N - 1> evaluate(const Vec<N>& x) const override { return noise_.evaluate_all(x); }
+  double wavenumber() const override { return wavenumber_; }
+  double amplitude() const override { return amplitude_; }
+
+ private:
+  SimplexNoise<N> noise_;
+  double wavenumber_;
+  double amplitude_;
 };
 
 extern template class SimplexNoise<2>;

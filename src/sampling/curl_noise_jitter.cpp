@@ -15,6 +15,7 @@ void CnjOptions::validate() const {
     throw std::invalid_argument("step scale must be a finite number > 0");
   if (!std::isfinite(frequency) || frequency <= 0.0)
     throw std::invalid_argument("frequency must be a finite number > 0");
+  parse_noise_basis(to_string(noise));  // an unknown enum value throws
 }
 
 template <int N>
@@ -26,7 +27,7 @@ CnjResult curl_noise_jitter(const LatticeSpec& lattice, const CnjOptions& option
   CnjResult result;
   result.trace_time = options.step_scale * average_neighbour_distance(N) * lattice.spacing();
   result.field_frequency = options.frequency / lattice.spacing();
-  const DfvnField<N> field(seed, result.field_frequency);
+  const DfvnField<N> field(seed, FieldOptions{options.noise, result.field_frequency});
   const Tracer<N> tracer(field, options.trace);
 
   std::vector<double> moved(static_cast<std::size_t>(count) * N);

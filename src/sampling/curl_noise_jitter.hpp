@@ -15,12 +15,11 @@ struct CnjOptions {
   TraceOptions trace;  // default: one RK4 step with Gauss-Newton reprojection
   // Trace time t = step_scale * dbar(N) * spacing (Section 5.1: proportional to the average
   // neighbour distance). |c| has RMS 1, so t is also the RMS length of a one-step move.
-  // Noise frequency in cycles per lattice spacing: the field's frequency is frequency / spacing.
-  // Defaults chosen by scripts/sweep_cnj.py (record: data/cnj_sweep.md): at the RMS move of random
-  // jitter, frequency 0.5 gives the best minimum distance relative to jitter's (0.60 averaged over
-  // 3D-7D) among frequencies >= 0.25, and 0.516 is the step scale that matches jitter's RMS move in 3D.
-  double step_scale = 0.52;
-  double frequency = 0.5;
+  // Noise frequency in cycles per lattice spacing (FieldOptions::frequency): the field's frequency is
+  // frequency / spacing.
+  NoiseBasis noise = kDefaultNoiseBasis;
+  double step_scale = 0.35;
+  double frequency = 0.2;
 
   void validate() const;  // throws std::invalid_argument naming the option
 };

@@ -64,7 +64,7 @@ GrayImage warp_image(const WarpConfig& config, const WarpVariant& variant, std::
   options.reprojection = variant.newton_steps > 0 ? Reprojection::newton : Reprojection::none;
   options.reproject_iterations = variant.newton_steps;
   // The field's frequency is per unit length; the image is one unit wide.
-  const DfvnField<2> field(config.seed, config.frequency);
+  const DfvnField<2> field(config.seed, FieldOptions{config.noise, config.frequency});
   const Tracer<2> tracer(field, options);
   const int threads = resolve_threads(config.threads);
   std::vector<TraceStats> per_thread(static_cast<std::size_t>(threads));

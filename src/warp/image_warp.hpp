@@ -25,6 +25,7 @@ struct WarpConfig {
   // the image into noise (Euler 64 steps: RMSE 127); at 3 the warp shows Figure 5's well-defined
   // swirls (look at figure5.png).
   double frequency = 3.0;
+  NoiseBasis noise = NoiseBasis::simplex;
   std::uint64_t seed = 1;
   int threads = 0;
 

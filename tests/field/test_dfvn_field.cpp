@@ -42,7 +42,7 @@ std::vector<Vec<N>> active_points(const DfvnField<N>& field, int count) {
 
 TYPED_TEST(FieldTest, DivergenceIsZeroRelativeToTheJacobian) {
   constexpr int N = TypeParam::value;
-  const DfvnField<N> field(kSeed, 1.3);
+  const DfvnField<N> field(kSeed, FieldOptions{NoiseBasis::simplex, 1.3});
   const auto points = active_points<N>(field, 200);
   ASSERT_EQ(points.size(), 200u);
   double worst_field = 0.0, median_gradient_field = 0.0;
@@ -67,7 +67,7 @@ TYPED_TEST(FieldTest, DivergenceIsZeroRelativeToTheJacobian) {
 
 TYPED_TEST(FieldTest, VelocityIsOrthogonalToEveryGradient) {
   constexpr int N = TypeParam::value;
-  const DfvnField<N> field(kSeed, 0.7);
+  const DfvnField<N> field(kSeed, FieldOptions{NoiseBasis::simplex, 0.7});
   for (std::uint64_t i = 0; i < 500; ++i) {
     const auto s = field.evaluate(testing::random_point<N>(kSeed + 1, i));
     for (int k = 0; k < N - 1; ++k)
@@ -77,7 +77,7 @@ TYPED_TEST(FieldTest, VelocityIsOrthogonalToEveryGradient) {
 
 TYPED_TEST(FieldTest, FrequencyScalesSpaceButNotSpeed) {
   constexpr int N = TypeParam::value;
-  const DfvnField<N> base(kSeed, 1.0), fast(kSeed, 4.0);
+  const DfvnField<N> base(kSeed, FieldOptions{NoiseBasis::simplex, 1.0}), fast(kSeed, FieldOptions{NoiseBasis::simplex, 4.0});
   for (std::uint64_t i = 0; i < 50; ++i) {
     const Vec<N> x = testing::random_point<N>(kSeed + 2, i);
     const auto a = base.evaluate(4.0 * x);
@@ -88,9 +88,9 @@ TYPED_TEST(FieldTest, FrequencyScalesSpaceButNotSpeed) {
 }
 
 TEST(Field, RejectsBadFrequency) {
-  EXPECT_THROW(DfvnField<3>(1, 0.0), std::invalid_argument);
-  EXPECT_THROW(DfvnField<3>(1, -1.0), std::invalid_argument);
-  EXPECT_THROW(DfvnField<3>(1, std::nan("")), std::invalid_argument);
+  EXPECT_THROW(DfvnField<3>(1, FieldOptions{NoiseBasis::simplex, 0.0}), std::invalid_argument);
+  EXPECT_THROW(DfvnField<3>(1, FieldOptions{NoiseBasis::simplex, -1.0}), std::invalid_argument);
+  EXPECT_THROW(DfvnField<3>(1, FieldOptions{NoiseBasis::simplex, std::nan("")}), std::invalid_argument);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
-// Re-checks the amplitudes of src/field/normalisation.hpp: RMS |c| = 1 in every dimension, measured
+// Re-checks the amplitudes of src/noise/simplex_normalisation.hpp: RMS |c| = 1 in every dimension, measured
 // on seeds and points that the derivation (scripts/derive_normalisation) did not use.
-#include "field/normalisation.hpp"
+#include "noise/simplex_normalisation.hpp"
 
 #include <cmath>
 
@@ -20,7 +20,7 @@ TYPED_TEST(NormalisationTest, RmsSpeedIsOne) {
   const int samples = 150000;
   double sum = 0.0, sum2 = 0.0;
   for (int s = 0; s < seeds; ++s) {
-    const DfvnField<N> field(777 + static_cast<std::uint64_t>(s), 2.5);
+    const DfvnField<N> field(777 + static_cast<std::uint64_t>(s), FieldOptions{NoiseBasis::simplex, 2.5});
     for (int i = 0; i < samples; ++i) {
       const double c2 = field.velocity(testing::random_point<N>(555 + static_cast<std::uint64_t>(s),
                                                                  static_cast<std::uint64_t>(i), 0.0, 400.0))

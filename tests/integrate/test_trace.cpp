@@ -38,10 +38,10 @@ Vec<N> trace_plain(const DfvnField<N>& field, Integrator integrator, int steps, 
 // Median over starting points of log2(e(M) / e(2M)) for M = 16: ~4 for RK4, ~1 for Euler.
 template <int N>
 double convergence_order(Integrator integrator) {
-  const DfvnField<N> field(kSeed, 1.0);
+  const DfvnField<N> field(kSeed, FieldOptions{NoiseBasis::simplex, 1.0});
   const auto points = moving_points<N>(field, 9);
   EXPECT_EQ(points.size(), 9u);
-  // In 7D-8D |c| varies like t^(4(N-1)) near kernel edges (normalisation.hpp), so the asymptotic
+  // In 7D-8D |c| varies like t^(4(N-1)) near kernel edges (noise/simplex_normalisation.hpp), so the asymptotic
   // regime of the step needs a shorter path there.
   const double time = N <= 6 ? 0.25 : 0.05;
   std::vector<double> orders;
@@ -73,9 +73,9 @@ TYPED_TEST(TraceTest, EulerErrorShrinksLikeH) {
 // the trace stays on f(x) = f(x0) to round-off; without it, it drifts.
 TYPED_TEST(TraceTest, GaussNewtonReprojectionKeepsTheIsoValues) {
   constexpr int N = TypeParam::value;
-  const DfvnField<N> field(kSeed, 1.0);
+  const DfvnField<N> field(kSeed, FieldOptions{NoiseBasis::simplex, 1.0});
   // From 6D on the speed along one streamline ranges over 0.3..300 and there are regions where every
-  // gradient vanishes (normalisation.hpp): too long a step overshoots into one, which no reprojection
+  // gradient vanishes (noise/simplex_normalisation.hpp): too long a step overshoots into one, which no reprojection
   // can undo (8D with 500 steps: drift 0.3 with or without reprojection; with 1000 steps: 8e-14 vs
   // 0.17; 6D with 50 steps: 0.21 vs 0.22 for one path).
   TraceOptions with;
@@ -99,7 +99,7 @@ TYPED_TEST(TraceTest, GaussNewtonReprojectionKeepsTheIsoValues) {
 
 TYPED_TEST(TraceTest, NewtonReprojectionReducesTheResidual) {
   constexpr int N = TypeParam::value;
-  const DfvnField<N> field(kSeed, 1.0);
+  const DfvnField<N> field(kSeed, FieldOptions{NoiseBasis::simplex, 1.0});
   TraceOptions o;
   o.reprojection = Reprojection::newton;
   o.reproject_iterations = 10;
@@ -126,7 +126,7 @@ TYPED_TEST(TraceTest, NewtonReprojectionReducesTheResidual) {
 // gradient is zero and the Jacobian has rank 0: the update must be skipped and counted, never NaN.
 TYPED_TEST(TraceTest, RankDeficientJacobianSkipsTheUpdate) {
   constexpr int N = TypeParam::value;
-  const DfvnField<N> field(kSeed, 1.0);
+  const DfvnField<N> field(kSeed, FieldOptions{NoiseBasis::simplex, 1.0});
   Vec<N> hole;
   bool found = false;
   for (std::uint64_t i = 0; i < 200000 && !found; ++i) {
@@ -157,7 +157,7 @@ TYPED_TEST(TraceTest, RankDeficientJacobianSkipsTheUpdate) {
 // result). Updates are now bounded by the step length and must lower the residual.
 TEST(Trace, ReprojectionNeverJumpsFarFromTheStep) {
   constexpr int N = 5;
-  const DfvnField<N> field(1, 5.0);
+  const DfvnField<N> field(1, FieldOptions{NoiseBasis::simplex, 5.0});
   TraceOptions projected;  // one RK4 step, Gauss-Newton, as curl noise jittering uses it
   TraceOptions plain = projected;
   plain.reprojection = Reprojection::none;

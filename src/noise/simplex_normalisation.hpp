@@ -1,4 +1,6 @@
-// Per-dimension amplitude A_N of the noise functions, so that the RMS of |c| over space is 1.
+// Per-dimension amplitude A_N of the simplex noise functions, so that the RMS of |c| over space is 1
+// (SimplexNoiseFunctions::amplitude). The shared traversal couples the functions, so there is no
+// closed form (contrast turning_bands.hpp): the amplitudes are measured.
 #pragma once
 
 #include <stdexcept>
@@ -34,7 +36,7 @@ inline constexpr AmplitudeEntry kFieldAmplitudes[] = {
     {8, 22.311, 0.17},
 };
 
-inline double field_amplitude(int dimension) {
+inline double simplex_field_amplitude(int dimension) {
   for (const auto& entry : kFieldAmplitudes)
     if (entry.dimension == dimension) return entry.amplitude;
   throw std::invalid_argument("no field amplitude for dimension " + std::to_string(dimension));

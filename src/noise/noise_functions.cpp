@@ -1,0 +1,47 @@
+#include "noise/noise_functions.hpp"
+
+#include <stdexcept>
+
+#include "noise/simplex_noise.hpp"
+#include "noise/turning_bands.hpp"
+
+namespace dfvn {
+
+NoiseBasis parse_noise_basis(std::string_view name) {
+  for (NoiseBasis basis : kAllNoiseBases)
+    if (name == to_string(basis)) return basis;
+  throw std::invalid_argument("unknown noise basis '" + std::string(name) + "' (allowed: " + noise_basis_names() + ")");
+}
+
+std::string_view to_string(NoiseBasis basis) {
+  switch (basis) {
+    case NoiseBasis::simplex: return "simplex";
+    case NoiseBasis::turning_bands: return "turning-bands";
+  }
+  return "?";
+}
+
+std::string noise_basis_names() {
+  std::string names;
+  for (NoiseBasis basis : kAllNoiseBases) names += (names.empty() ? "" : ", ") + std::string(to_string(basis));
+  return names;
+}
+
+template <int N>
+std::shared_ptr<const NoiseFunctions<N>> make_noise_functions(NoiseBasis basis, std::uint64_t seed) {
+  switch (basis) {
+    case NoiseBasis::simplex: return std::make_shared<const SimplexNoiseFunctions<N>>(seed);
+    case NoiseBasis::turning_bands: return std::make_shared<const TurningBandsNoise<N>>(seed);
+  }
+  throw std::invalid_argument("unknown noise basis");
+}
+
+template std::shared_ptr<const NoiseFunctions<2>> make_noise_functions<2>(NoiseBasis, std::uint64_t);
+template std::shared_ptr<const NoiseFunctions<3>> make_noise_functions<3>(NoiseBasis, std::uint64_t);
+template std::shared_ptr<const NoiseFunctions<4>> make_noise_functions<4>(NoiseBasis, std::uint64_t);
+template std::shared_ptr<const NoiseFunctions<5>> make_noise_functions<5>(NoiseBasis, std::uint64_t);
+template std::shared_ptr<const NoiseFunctions<6>> make_noise_functions<6>(NoiseBasis, std::uint64_t);
+template std::shared_ptr<const NoiseFunctions<7>> make_noise_functions<7>(NoiseBasis, std::uint64_t);
+template std::shared_ptr<const NoiseFunctions<8>> make_noise_functions<8>(NoiseBasis, std::uint64_t);
+
+}  // namespace dfvn

@@ -1,0 +1,56 @@
+// The noise basis: N-1 scalar noise functions on R^N with analytic gradients, chosen once from an enum
+// and evaluated through one interface (the policy the DFVN field is built on).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "core/dimension.hpp"
+
+namespace dfvn {
+
+// Values and gradients of M scalar noise functions at one point.
+template <int N, int M>
+struct NoiseSample {
+  std::array<double, M> value;
+  std::array<Vec<N>, M> gradient;
+};
+
+// simplex: the paper's construction (Perlin's simplex noise, C2 kernel, one shared traversal for all
+// functions; noise/simplex_noise.hpp). Its field collapses from 4D on: kept to show that construction.
+// turning_bands: 2N one-dimensional quintic gradient noises per function along the rows of two random
+// orthonormal frames (noise/turning_bands.hpp): healthy in every dimension, the default.
+enum class NoiseBasis { simplex, turning_bands };
+inline constexpr NoiseBasis kDefaultNoiseBasis = NoiseBasis::turning_bands;
+inline constexpr NoiseBasis kAllNoiseBases[] = {NoiseBasis::simplex, NoiseBasis::turning_bands};
+
+NoiseBasis parse_noise_basis(std::string_view name);  // throws std::invalid_argument listing the names
+std::string_view to_string(NoiseBasis basis);
+std::string noise_basis_names();  // "simplex, turning-bands"
+
+// N-1 independent, seeded, deterministic C2 noise functions n_i: R^N -> R with zero mean.
+template <int N>
+class NoiseFunctions {
+ public:
+  virtual ~NoiseFunctions() = default;
+
+  // n_i(x) and grad n_i(x) for i = 0..N-2.
+  virtual NoiseSample<N, N - 1> evaluate(const Vec<N>& x) const = 0;
+
+  // k_eff = sqrt(E|grad n_i|^2 / E n_i^2) over space, in radians per unit of x: one "cycle" of the
+  // noise is 2 pi / k_eff long. Every basis reports its own, so a frequency means the same for all.
+  virtual double wavenumber() const = 0;
+
+  // A such that the field of the functions (A / s) n_i(s x) has RMS |cross(grad ...)| = 1 for every
+  // scale s (the gradients are A grad n_i(s x), independent of s).
+  virtual double amplitude() const = 0;
+};
+
+// The basis's functions for `seed`. Throws std::invalid_argument for an unknown basis.
+template <int N>
+std::shared_ptr<const NoiseFunctions<N>> make_noise_functions(NoiseBasis basis, std::uint64_t seed);
+
+}  // namespace dfvn

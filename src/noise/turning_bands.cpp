@@ -1,0 +1,134 @@
+#include "noise/turning_bands.hpp"
+
+#include <cmath>
+
+#include <Eigen/QR>
+
+#include "core/hash.hpp"
+
+namespace dfvn {
+namespace {
+
+// The quintic fade and its derivative.
+inline double fade(double u) { return u * u * u * (u * (6.0 * u - 15.0) + 10.0); }
+inline double fade_slope(double u) {
+  const double v = u * (u - 1.0);
+  return 30.0 * v * v;
+}
+
+// Slope of a band at integer knot j, uniform in [-1, 1): one SplitMix64 finaliser of the band's key
+// plus the knot times an odd constant (a bijection of j for each key).
+inline double knot_slope(std::uint64_t key, std::int64_t j) {
+  const std::uint64_t h = mix64(key + static_cast<std::uint64_t>(j) * kGoldenGamma);
+  return static_cast<double>(static_cast<std::int64_t>(h)) * 0x1.0p-63;
+}
+
+// Lanes of the turning-bands stream: per band (index = band) the key and the offset; per frame
+// (index = function * 2 + frame) the Gaussian entries from lane kFrameLane on.
+constexpr std::uint64_t kKeyLane = 0, kOffsetLane = 1, kFrameLane = 16;
+constexpr std::uint64_t kFrameIndexBase = 1ULL << 32;  // frames never share an index with a band
+
+// A Haar-random orthogonal N x N matrix: QR of a Gaussian matrix, with the signs of R's diagonal moved
+// into Q (without that correction Q is not uniformly distributed).
+template <int N>
+Eigen::Matrix<double, N, N> random_frame(std::uint64_t seed, std::uint64_t index) {
+  Eigen::Matrix<double, N, N> gaussian;
+  for (int e = 0; e < N * N; ++e) {
+    const auto lane = kFrameLane + 2 * static_cast<std::uint64_t>(e);
+    const double u1 = 1.0 - random_unit(seed, Stream::turning_bands, index, lane);  // in (0, 1]
+    const double u2 = random_unit(seed, Stream::turning_bands, index, lane + 1);
+    gaussian(e / N, e % N) = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);  // Box-Muller
+  }
+  const Eigen::HouseholderQR<Eigen::Matrix<double, N, N>> qr(gaussian);
+  Eigen::Matrix<double, N, N> q = qr.householderQ();
+  for (int j = 0; j < N; ++j)
+    if (qr.matrixQR()(j, j) < 0.0) q.col(j) = -q.col(j);
+  return q;
+}
+
+}  // namespace
+
+BandMoments quintic_band_moments() {
+  // p = g0 a(u) + g1 b(u) with a = u (1 - s), b = (u - 1) s; slopes independent with E g^2 = 1/3, so
+  // E p^2 = (1/3) int (a^2 + b^2) du and E p'^2 = (1/3) int (a'^2 + b'^2) du over u in [0, 1].
+  // Polynomials of degree <= 12: Simpson's rule on 1000 intervals is exact to rounding
+  // (20/77 = 0.2597 and 0.01980: k_eff = sqrt(E p'^2 / E p^2) = 3.622 radians per knot spacing).
+  const int intervals = 1000;
+  double value2 = 0.0, slope2 = 0.0;
+  for (int k = 0; k <= intervals; ++k) {
+    const double u = static_cast<double>(k) / intervals;
+    const double w = (k == 0 || k == intervals) ? 1.0 : (k % 2 ? 4.0 : 2.0);
+    const double s = fade(u), ds = fade_slope(u);
+    const double a = u * (1.0 - s), b = (u - 1.0) * s;
+    const double da = 1.0 - s - u * ds, db = s + (u - 1.0) * ds;
+    value2 += w * (a * a + b * b);
+    slope2 += w * (da * da + db * db);
+  }
+  const double scale = 1.0 / (3.0 * 3.0 * intervals);  // Simpson's h/3, and E g^2 = 1/3
+  return {value2 * scale, slope2 * scale};
+}
+
+template <int N>
+TurningBandsNoise<N>::TurningBandsNoise(std::uint64_t seed) {
+  for (int i = 0; i < N - 1; ++i)
+    for (int frame = 0; frame < 2; ++frame) {
+      const auto q = random_frame<N>(seed, kFrameIndexBase + 2 * static_cast<std::uint64_t>(i) + frame);
+      directions_.template block<N, N>(i * kBandsPerFunction + frame * N, 0) = q.transpose();
+    }
+  for (int b = 0; b < kBands; ++b) {
+    keys_[b] = random_bits(seed, Stream::turning_bands, static_cast<std::uint64_t>(b), kKeyLane);
+    offsets_[b] = random_unit(seed, Stream::turning_bands, static_cast<std::uint64_t>(b), kOffsetLane);
+  }
+}
+
+template <int N>
+NoiseSample<N, N - 1> TurningBandsNoise<N>::evaluate(const Vec<N>& x) const {
+  // Band coordinates t_b = w_b . x + o_b for all bands at once (one matrix-vector product).
+  const Eigen::Matrix<double, kBands, 1> t = directions_ * x + offsets_;
+  Eigen::Matrix<double, kBands, 1> value, slope;
+  for (int b = 0; b < kBands; ++b) {
+    // floor by truncation: exact while |t| < 2^63, far beyond the range where t has a fraction at all.
+    auto cell = static_cast<std::int64_t>(t[b]);
+    cell -= static_cast<std::int64_t>(t[b] < static_cast<double>(cell));
+    const double u = t[b] - static_cast<double>(cell);
+    const double g0 = knot_slope(keys_[b], cell), g1 = knot_slope(keys_[b], cell + 1);
+    const double s = fade(u), ds = fade_slope(u);
+    value[b] = g0 * u * (1.0 - s) + g1 * (u - 1.0) * s;
+    slope[b] = g0 * (1.0 - s - u * ds) + g1 * (s + (u - 1.0) * ds);
+  }
+  const double norm = 1.0 / std::sqrt(static_cast<double>(kBandsPerFunction));
+  NoiseSample<N, N - 1> out;
+  for (int i = 0; i < N - 1; ++i) {
+    const int first = i * kBandsPerFunction;
+    out.value[i] = norm * value.template segment<kBandsPerFunction>(first).sum();
+    // grad n_i = K^(-1/2) sum_k p'_ik w_ik = K^(-1/2) W_i^T p'_i.
+    out.gradient[i].noalias() =
+        norm * directions_.template middleRows<kBandsPerFunction>(first).transpose() * slope.template segment<kBandsPerFunction>(first);
+  }
+  return out;
+}
+
+template <int N>
+double TurningBandsNoise<N>::wavenumber() const {
+  // |w| = 1 and the bands are independent: E|grad n|^2 / E n^2 = E p'^2 / E p^2.
+  const BandMoments m = quintic_band_moments();
+  return std::sqrt(m.slope2 / m.value2);
+}
+
+template <int N>
+double TurningBandsNoise<N>::amplitude() const {
+  // RMS |c| of the gradients A grad n_i is sqrt(N! (A^2 sigma^2 / N)^(N-1)); set it to 1.
+  const double sigma2 = quintic_band_moments().slope2;
+  const double factorial = std::tgamma(N + 1.0);
+  return std::sqrt(N / (sigma2 * std::pow(factorial, 1.0 / (N - 1))));
+}
+
+template class TurningBandsNoise<2>;
+template class TurningBandsNoise<3>;
+template class TurningBandsNoise<4>;
+template class TurningBandsNoise<5>;
+template class TurningBandsNoise<6>;
+template class TurningBandsNoise<7>;
+template class TurningBandsNoise<8>;
+
+}  // namespace dfvn
