@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/dimension.hpp"
+#include "field/diagnose.hpp"
 #include "field/evaluate_points.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
@@ -83,6 +84,8 @@ struct FieldCommand {
   std::string noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
   std::string input;
   std::string output = "-";
+  bool diagnose = false;
+  dfvn::DiagnosisOptions diagnosis;
 
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
@@ -97,15 +100,37 @@ struct FieldCommand {
         ->capture_default_str()
         ->check(kPositiveFinite);
     add_noise_option(*cmd, noise);
-    cmd->add_option("--input", input, "CSV file of points (default: standard input)")->check(CLI::ExistingFile);
+    CLI::Option* input_option =
+        cmd->add_option("--input", input, "CSV file of points (default: standard input)")->check(CLI::ExistingFile);
+    CLI::Option* diagnose_flag = cmd->add_flag(
+        "--diagnose", diagnose,
+        "Instead of reading points, measure the field on uniform random points and write one CSV row: RMS |c|,\n"
+        "median/RMS, q10/RMS, fraction of points below 1% of the RMS, |div c|/|Dc| by central differences\n"
+        "(median, p95, max) and the measured k_eff against 2 pi F");
+    diagnose_flag->excludes(input_option);
+    cmd->add_option("--diagnose-points", diagnosis.points, "With --diagnose: number of uniform random points")
+        ->capture_default_str()
+        ->check(CLI::Range(std::uint64_t{10}, std::uint64_t{100000000}));
+    cmd->add_option("--periods", diagnosis.periods, "With --diagnose: the points fill [0, periods / F]^N")
+        ->capture_default_str()
+        ->check(kPositiveFinite);
     cmd->add_option("--output", output, "Output CSV file, written whole or not at all ('-' = standard output)")
         ->capture_default_str();
     add_common_options(*cmd, common);
     cmd->callback([this] { run(); });
   }
 
-  void run() const {
+  void run() {
     if (output != "-") dfvn::check_writable(output);
+    if (diagnose) {
+      diagnosis.dimension = dimension;
+      diagnosis.field = {dfvn::parse_noise_basis(noise), frequency};
+      diagnosis.seed = common.seed;
+      diagnosis.threads = common.threads;
+      const dfvn::FieldDiagnosis d = dfvn::diagnose_field(diagnosis);
+      dfvn::write_file_atomically(output, dfvn::diagnosis_csv_header() + dfvn::diagnosis_csv_row(d));
+      return;
+    }
     dfvn::PointTable points;
     try {
       if (input.empty()) {

@@ -4,16 +4,39 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <string>
 #include <type_traits>
 
 #include "core/dimension.hpp"
 #include "core/hash.hpp"
+#include "noise/noise_functions.hpp"
 
 namespace dfvn::testing {
 
 template <int N>
 using Dim = std::integral_constant<int, N>;
 using AllDimensions = ::testing::Types<Dim<2>, Dim<3>, Dim<4>, Dim<5>, Dim<6>, Dim<7>, Dim<8>>;
+
+// A (noise basis, dimension) pair for sweeps over every basis and dimension.
+template <NoiseBasis B, int N>
+struct BasisDim {
+  static constexpr NoiseBasis basis = B;
+  static constexpr int dimension = N;
+};
+#define DFVN_BASIS_DIMENSIONS(B) \
+  BasisDim<B, 2>, BasisDim<B, 3>, BasisDim<B, 4>, BasisDim<B, 5>, BasisDim<B, 6>, BasisDim<B, 7>, BasisDim<B, 8>
+using AllBasesAndDimensions =
+    ::testing::Types<DFVN_BASIS_DIMENSIONS(NoiseBasis::simplex), DFVN_BASIS_DIMENSIONS(NoiseBasis::turning_bands)>;
+// The bases meant to be healthy in every dimension (all but the paper's simplex construction).
+using HealthyBasesAndDimensions = ::testing::Types<DFVN_BASIS_DIMENSIONS(NoiseBasis::turning_bands)>;
+
+// Names the typed tests "turning-bands_7D" rather than by an index.
+struct BasisDimName {
+  template <typename T>
+  static std::string GetName(int) {
+    return std::string(to_string(T::basis)) + "_" + std::to_string(T::dimension) + "D";
+  }
+};
 
 // A reproducible point in [lo, hi]^N: randomness is keyed by (seed, index), never by time.
 template <int N>

@@ -9,13 +9,6 @@
 namespace dfvn {
 namespace {
 
-// The quintic fade and its derivative.
-inline double fade(double u) { return u * u * u * (u * (6.0 * u - 15.0) + 10.0); }
-inline double fade_slope(double u) {
-  const double v = u * (u - 1.0);
-  return 30.0 * v * v;
-}
-
 // Slope of a band at integer knot j, uniform in [-1, 1): one SplitMix64 finaliser of the band's key
 // plus the knot times an odd constant (a bijection of j for each key).
 inline double knot_slope(std::uint64_t key, std::int64_t j) {
@@ -49,23 +42,12 @@ Eigen::Matrix<double, N, N> random_frame(std::uint64_t seed, std::uint64_t index
 }  // namespace
 
 BandMoments quintic_band_moments() {
-  // p = g0 a(u) + g1 b(u) with a = u (1 - s), b = (u - 1) s; slopes independent with E g^2 = 1/3, so
-  // E p^2 = (1/3) int (a^2 + b^2) du and E p'^2 = (1/3) int (a'^2 + b'^2) du over u in [0, 1].
-  // Polynomials of degree <= 12: Simpson's rule on 1000 intervals is exact to rounding
-  // (20/77 = 0.2597 and 0.01980: k_eff = sqrt(E p'^2 / E p^2) = 3.622 radians per knot spacing).
-  const int intervals = 1000;
-  double value2 = 0.0, slope2 = 0.0;
-  for (int k = 0; k <= intervals; ++k) {
-    const double u = static_cast<double>(k) / intervals;
-    const double w = (k == 0 || k == intervals) ? 1.0 : (k % 2 ? 4.0 : 2.0);
-    const double s = fade(u), ds = fade_slope(u);
-    const double a = u * (1.0 - s), b = (u - 1.0) * s;
-    const double da = 1.0 - s - u * ds, db = s + (u - 1.0) * ds;
-    value2 += w * (a * a + b * b);
-    slope2 += w * (da * da + db * db);
-  }
-  const double scale = 1.0 / (3.0 * 3.0 * intervals);  // Simpson's h/3, and E g^2 = 1/3
-  return {value2 * scale, slope2 * scale};
+  // p = g0 a(u) + g1 b(u) with a = u (1 - s), b = (u - 1) s; the slopes are independent with
+  // E g^2 = 1/3, so E p^2 = (1/3) int_0^1 (a^2 + b^2) du and E p'^2 = (1/3) int_0^1 (a'^2 + b'^2) du.
+  // Integrating these polynomials (degree <= 12) exactly in rational arithmetic gives 535/27027 and
+  // 20/77: k_eff = sqrt(E p'^2 / E p^2) = 3.622 radians per knot spacing. The test
+  // TurningBands.BandMomentsHaveTheirClosedForms re-derives both by quadrature of fade().
+  return {535.0 / 27027.0, 20.0 / 77.0};
 }
 
 template <int N>
@@ -92,7 +74,7 @@ NoiseSample<N, N - 1> TurningBandsNoise<N>::evaluate(const Vec<N>& x) const {
     cell -= static_cast<std::int64_t>(t[b] < static_cast<double>(cell));
     const double u = t[b] - static_cast<double>(cell);
     const double g0 = knot_slope(keys_[b], cell), g1 = knot_slope(keys_[b], cell + 1);
-    const double s = fade(u), ds = fade_slope(u);
+    const double s = quintic_fade(u), ds = quintic_fade_slope(u);
     value[b] = g0 * u * (1.0 - s) + g1 * (u - 1.0) * s;
     slope[b] = g0 * (1.0 - s - u * ds) + g1 * (s + (u - 1.0) * ds);
   }

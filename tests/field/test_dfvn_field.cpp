@@ -2,14 +2,21 @@
 
 #include <cmath>
 
+#include "field/diagnose.hpp"
+#include "field/evaluate_points.hpp"
 #include "test_support.hpp"
 
 namespace dfvn {
 namespace {
 
-template <typename D>
-class FieldTest : public ::testing::Test {};
-TYPED_TEST_SUITE(FieldTest, testing::AllDimensions);
+// Swept over every noise basis and dimension 2..8.
+template <typename T>
+class FieldTest : public ::testing::Test {
+ protected:
+  static constexpr int N = T::dimension;
+  static FieldOptions options(double frequency) { return {T::basis, frequency}; }
+};
+TYPED_TEST_SUITE(FieldTest, testing::AllBasesAndDimensions, testing::BasisDimName);
 
 constexpr std::uint64_t kSeed = 42;
 
@@ -40,9 +47,11 @@ std::vector<Vec<N>> active_points(const DfvnField<N>& field, int count) {
   return points;
 }
 
+// On points where c is not ~0 (for the simplex basis that selects the active regions; see
+// DivergenceOnUniformRandomPoints for the measurement on points nobody chose).
 TYPED_TEST(FieldTest, DivergenceIsZeroRelativeToTheJacobian) {
-  constexpr int N = TypeParam::value;
-  const DfvnField<N> field(kSeed, FieldOptions{NoiseBasis::simplex, 1.3});
+  constexpr int N = TestFixture::N;
+  const DfvnField<N> field(kSeed, TestFixture::options(1.3));
   const auto points = active_points<N>(field, 200);
   ASSERT_EQ(points.size(), 200u);
   double worst_field = 0.0, median_gradient_field = 0.0;
@@ -66,8 +75,8 @@ TYPED_TEST(FieldTest, DivergenceIsZeroRelativeToTheJacobian) {
 }
 
 TYPED_TEST(FieldTest, VelocityIsOrthogonalToEveryGradient) {
-  constexpr int N = TypeParam::value;
-  const DfvnField<N> field(kSeed, FieldOptions{NoiseBasis::simplex, 0.7});
+  constexpr int N = TestFixture::N;
+  const DfvnField<N> field(kSeed, TestFixture::options(0.7));
   for (std::uint64_t i = 0; i < 500; ++i) {
     const auto s = field.evaluate(testing::random_point<N>(kSeed + 1, i));
     for (int k = 0; k < N - 1; ++k)
@@ -76,8 +85,8 @@ TYPED_TEST(FieldTest, VelocityIsOrthogonalToEveryGradient) {
 }
 
 TYPED_TEST(FieldTest, FrequencyScalesSpaceButNotSpeed) {
-  constexpr int N = TypeParam::value;
-  const DfvnField<N> base(kSeed, FieldOptions{NoiseBasis::simplex, 1.0}), fast(kSeed, FieldOptions{NoiseBasis::simplex, 4.0});
+  constexpr int N = TestFixture::N;
+  const DfvnField<N> base(kSeed, TestFixture::options(1.0)), fast(kSeed, TestFixture::options(4.0));
   for (std::uint64_t i = 0; i < 50; ++i) {
     const Vec<N> x = testing::random_point<N>(kSeed + 2, i);
     const auto a = base.evaluate(4.0 * x);
@@ -85,6 +94,86 @@ TYPED_TEST(FieldTest, FrequencyScalesSpaceButNotSpeed) {
     EXPECT_LT((a.velocity - b.velocity).norm(), 1e-12 * (1.0 + a.velocity.norm()));
     EXPECT_NEAR(a.value[0], 4.0 * b.value[0], 1e-12 * (1.0 + std::abs(a.value[0])));
   }
+}
+
+// The |c| distribution on uniform random points (issue targets at 10^5 points: median/RMS >= 0.4,
+// fraction below 1% of the RMS <= 0.3%, RMS within 3% of 1). Here at 20,000 points, with tolerances for
+// that sample (the binomial standard error of a 0.2% fraction is 0.03%): they still fail for the
+// simplex construction from 3D on (3D: 3% of points below 1%; 7D: median/RMS 1e-14), so the same check
+// is asserted to fail there.
+TYPED_TEST(FieldTest, SpeedDistributionIsHealthyOnUniformRandomPoints) {
+  constexpr int N = TestFixture::N;
+  DiagnosisOptions o;
+  o.dimension = N;
+  o.field = TestFixture::options(1.0);
+  o.seed = kSeed;
+  o.points = 20000;
+  const FieldDiagnosis d = diagnose_field(o);
+  const bool healthy = d.median_over_rms >= 0.4 && d.fraction_below_1_percent <= 0.004 && std::abs(d.rms_speed - 1.0) <= 0.04;
+  std::printf("%s N=%d RMS |c| %.4f, median/RMS %.3g, q10/RMS %.3g, below 1%%: %.5f\n", to_string(TypeParam::basis).data(),
+              N, d.rms_speed, d.median_over_rms, d.q10_over_rms, d.fraction_below_1_percent);
+  const bool expected_healthy = TypeParam::basis != NoiseBasis::simplex || N == 2;
+  EXPECT_EQ(healthy, expected_healthy);
+}
+
+// Divergence by central differences on uniform random points, every point counted (issue targets:
+// median |div c| / |Dc| <= 1e-8, p95 <= 1e-6). The simplex field fails them from 6D on (p95 1e-5 in
+// 6D, 0.04 in 7D), where |Dc| is tiny in most of space and the difference error dominates; it is held
+// to the targets where it meets them.
+TYPED_TEST(FieldTest, DivergenceOnUniformRandomPoints) {
+  constexpr int N = TestFixture::N;
+  DiagnosisOptions o;
+  o.dimension = N;
+  o.field = TestFixture::options(1.0);
+  o.seed = kSeed + 1;
+  o.points = 20000;
+  const FieldDiagnosis d = diagnose_field(o);
+  std::printf("%s N=%d |div c|/|Dc|: median %.3g p95 %.3g max %.3g (still points %llu)\n", to_string(TypeParam::basis).data(),
+              N, d.divergence_median, d.divergence_p95, d.divergence_max, static_cast<unsigned long long>(d.still_points));
+  if (TypeParam::basis != NoiseBasis::simplex || N <= 5) {
+    EXPECT_LE(d.divergence_median, 1e-8);
+    EXPECT_LE(d.divergence_p95, 1e-6);
+  }
+  if (TypeParam::basis != NoiseBasis::simplex) EXPECT_EQ(d.still_points, 0u);
+}
+
+// k_eff measured on the scaled functions f_i equals 2 pi F: a frequency means the same for every basis.
+TYPED_TEST(FieldTest, FrequencyIsCyclesOfTheEffectiveWavenumber) {
+  DiagnosisOptions o;
+  o.dimension = TestFixture::N;
+  o.field = TestFixture::options(3.7);
+  o.points = 20000;
+  const FieldDiagnosis d = diagnose_field(o);
+  EXPECT_NEAR(d.wavenumber_measured / d.wavenumber_expected, 1.0, 0.03);
+}
+
+TYPED_TEST(FieldTest, OutputDoesNotDependOnTheThreadCount) {
+  constexpr int N = TestFixture::N;
+  DiagnosisOptions o;
+  o.dimension = N;
+  o.field = TestFixture::options(1.0);
+  o.points = 3000;
+  o.threads = 1;
+  FieldDiagnosis one = diagnose_field(o);
+  o.threads = 2;
+  FieldDiagnosis two = diagnose_field(o);
+  one.seconds = two.seconds = 0.0;
+  one.options.threads = two.options.threads = 0;
+  EXPECT_EQ(diagnosis_csv_row(one), diagnosis_csv_row(two));
+
+  PointTable points;
+  points.dimension = N;
+  for (std::uint64_t i = 0; i < 5000; ++i) {
+    const Vec<N> x = testing::random_point<N>(kSeed + 7, i);
+    points.coordinates.insert(points.coordinates.end(), x.data(), x.data() + N);
+  }
+  FieldQuery q;
+  q.dimension = N;
+  q.field = TestFixture::options(0.9);
+  q.threads = 1;
+  const std::string a = evaluate_field_csv(q, points);
+  q.threads = 2;
+  EXPECT_EQ(a, evaluate_field_csv(q, points));
 }
 
 TEST(Field, RejectsBadFrequency) {
