@@ -48,9 +48,12 @@ void BM_NoiseSeparate(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
+// One field evaluation (noise, scaling, cross product), per basis: state.range(0) indexes kAllNoiseBases.
 template <int N>
 void BM_Field(benchmark::State& state) {
-  const DfvnField<N> field(1, FieldOptions{NoiseBasis::simplex, 1.0});
+  const NoiseBasis basis = kAllNoiseBases[state.range(0)];
+  state.SetLabel(std::string(to_string(basis)));
+  const DfvnField<N> field(1, FieldOptions{basis, 1.0});
   const auto points = bench_points<N>(4096);
   std::size_t i = 0;
   for (auto _ : state) benchmark::DoNotOptimize(field.evaluate(points[i++ & 4095]));
@@ -60,7 +63,9 @@ void BM_Field(benchmark::State& state) {
 // One CNJ point: one RK4 step with Gauss-Newton reprojection (the default).
 template <int N>
 void BM_Rk4GaussNewtonStep(benchmark::State& state) {
-  const DfvnField<N> field(1, FieldOptions{NoiseBasis::simplex, 5.0});
+  const NoiseBasis basis = kAllNoiseBases[state.range(0)];
+  state.SetLabel(std::string(to_string(basis)));
+  const DfvnField<N> field(1, FieldOptions{basis, 5.0});
   const Tracer<N> tracer(field, TraceOptions{});
   const auto points = bench_points<N>(4096);
   TraceStats stats;
@@ -70,21 +75,23 @@ void BM_Rk4GaussNewtonStep(benchmark::State& state) {
   state.counters["evals_per_point"] = static_cast<double>(stats.field_evaluations) / static_cast<double>(state.iterations());
 }
 
-#define DFVN_BENCH_ALL_DIMENSIONS(name) \
-  BENCHMARK_TEMPLATE(name, 2);          \
-  BENCHMARK_TEMPLATE(name, 3);          \
-  BENCHMARK_TEMPLATE(name, 4);          \
-  BENCHMARK_TEMPLATE(name, 5);          \
-  BENCHMARK_TEMPLATE(name, 6);          \
-  BENCHMARK_TEMPLATE(name, 7);          \
-  BENCHMARK_TEMPLATE(name, 8)
+// Every dimension; `...` is appended to each registration (e.g. ->DenseRange over the bases).
+#define DFVN_BENCH_ALL_DIMENSIONS(name, ...) \
+  BENCHMARK_TEMPLATE(name, 2) __VA_ARGS__;    \
+  BENCHMARK_TEMPLATE(name, 3) __VA_ARGS__;    \
+  BENCHMARK_TEMPLATE(name, 4) __VA_ARGS__;    \
+  BENCHMARK_TEMPLATE(name, 5) __VA_ARGS__;    \
+  BENCHMARK_TEMPLATE(name, 6) __VA_ARGS__;    \
+  BENCHMARK_TEMPLATE(name, 7) __VA_ARGS__;    \
+  BENCHMARK_TEMPLATE(name, 8) __VA_ARGS__
 
+constexpr int kLastBasis = static_cast<int>(std::size(kAllNoiseBases)) - 1;
 DFVN_BENCH_ALL_DIMENSIONS(BM_NoiseFused);
 DFVN_BENCH_ALL_DIMENSIONS(BM_NoiseSeparate);
-DFVN_BENCH_ALL_DIMENSIONS(BM_Field);
-DFVN_BENCH_ALL_DIMENSIONS(BM_Rk4GaussNewtonStep);
+DFVN_BENCH_ALL_DIMENSIONS(BM_Field, ->DenseRange(0, kLastBasis));
+DFVN_BENCH_ALL_DIMENSIONS(BM_Rk4GaussNewtonStep, ->DenseRange(0, kLastBasis));
 
-// CNJ on the 6^7 paper lattice (279,936 points), all threads: the 0.5 s target.
+// CNJ on the 6^7 paper lattice (279,936 points), all threads, default basis: the 2 s target.
 void BM_CnjPaper7D(benchmark::State& state) {
   const LatticeSpec lattice{7, 6, Protocol::paper};
   for (auto _ : state) benchmark::DoNotOptimize(curl_noise_jitter(lattice, CnjOptions{}, 1, 0));

@@ -32,7 +32,7 @@ CnjResult curl_noise_jitter(const LatticeSpec& lattice, const CnjOptions& option
 
   std::vector<double> moved(static_cast<std::size_t>(count) * N);
   std::vector<unsigned char> inside(static_cast<std::size_t>(count));
-  std::vector<double> squared_displacement(static_cast<std::size_t>(count));
+  result.displacements.resize(static_cast<std::size_t>(count) * N);
   TraceStats stats;
   std::atomic<std::int64_t> done{0};
   const std::int64_t report_every = std::max<std::int64_t>(count / 100, 1024);
@@ -46,7 +46,7 @@ CnjResult curl_noise_jitter(const LatticeSpec& lattice, const CnjOptions& option
       const Vec<N> x = tracer.trace(x0, result.trace_time, &local);
       Eigen::Map<Vec<N>>(moved.data() + i * N) = x;
       inside[static_cast<std::size_t>(i)] = Box{0.0, 1.0}.contains(x.data(), N);
-      squared_displacement[static_cast<std::size_t>(i)] = (x - x0).squaredNorm();
+      Eigen::Map<Vec<N>>(result.displacements.data() + i * N) = x - x0;
       if (progress && (i + 1) % report_every == 0) {
         const std::int64_t d = done.fetch_add(report_every) + report_every;
         if (omp_get_thread_num() == 0) progress(static_cast<double>(d) / static_cast<double>(count));
@@ -60,7 +60,7 @@ CnjResult curl_noise_jitter(const LatticeSpec& lattice, const CnjOptions& option
   result.points.coordinates.reserve(moved.size());
   double total_squared_displacement = 0.0;
   for (std::int64_t i = 0; i < count; ++i) {
-    total_squared_displacement += squared_displacement[static_cast<std::size_t>(i)];
+    total_squared_displacement += Eigen::Map<const Vec<N>>(result.displacements.data() + i * N).squaredNorm();
     if (inside[static_cast<std::size_t>(i)])
       result.points.coordinates.insert(result.points.coordinates.end(), moved.begin() + i * N, moved.begin() + (i + 1) * N);
     else

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "integrate/trace.hpp"
 #include "sampling/lattice.hpp"
@@ -30,6 +31,8 @@ struct CnjResult {
   double trace_time = 0.0;          // t
   double field_frequency = 0.0;     // frequency / spacing
   double rms_displacement = 0.0;    // over all traced points, dropped ones included
+  // x - x0 of every traced point (dropped ones included), K^N x N row-major in lattice order.
+  std::vector<double> displacements;
   TraceStats trace_stats;
 };
 

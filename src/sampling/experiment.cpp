@@ -102,21 +102,27 @@ void SampleConfig::validate() const {
         grid, dimension, count, need / double(1ULL << 30), limit / double(1ULL << 30)));
 }
 
-PointSet generate_points(const SampleConfig& config, const MethodPlan& plan, std::string& notes,
-                         const StageProgress& progress) {
+static PointSet generate_points(const SampleConfig& config, const MethodPlan& plan, std::string& notes,
+                         std::optional<LatticeDisplacementSummary>& displacement, const StageProgress& progress) {
   const LatticeSpec lattice = config.lattice();
   switch (plan.method) {
     case Method::cnj: {
       CnjResult r = curl_noise_jitter(lattice, config.cnj, config.seed, config.threads, [&](double f) {
         if (progress) progress("cnj", f);
       });
-      notes = fmt::format("t={:.4g} F={:.4g} rms_move={:.4g} dropped={} skipped_updates={}", r.trace_time,
-                          r.field_frequency, r.rms_displacement, r.dropped, r.trace_stats.skipped_updates);
+      notes = fmt::format("noise={} t={:.4g} F={:.4g} rms_move={:.4g} dropped={} skipped_updates={}",
+                          to_string(config.cnj.noise), r.trace_time, r.field_frequency, r.rms_displacement, r.dropped,
+                          r.trace_stats.skipped_updates);
+      displacement = summarize_lattice_displacements(config.dimension, config.grid, lattice.spacing(), r.displacements);
       return std::move(r.points);
     }
-    case Method::jitter:
+    case Method::jitter: {
       notes = fmt::format("half_width={:.4g}", jitter_half_width(lattice));
-      return jittered_lattice(lattice, config.seed, config.threads);
+      PointSet points = jittered_lattice(lattice, config.seed, config.threads);
+      displacement = summarize_lattice_displacements(config.dimension, config.grid, lattice.spacing(),
+                                                     lattice_displacements(lattice, points));
+      return points;
+    }
     case Method::random:
       return uniform_random_points(config.dimension, plan.requested, plan.domain, config.seed, config.threads);
     case Method::pds: {
@@ -137,6 +143,10 @@ PointSet generate_points(const SampleConfig& config, const MethodPlan& plan, std
   throw std::logic_error("unknown method");
 }
 
+void generate_points(const SampleConfig& config, MethodResult& result, const StageProgress& progress) {
+  result.points = generate_points(config, result.plan, result.notes, result.displacement, progress);
+}
+
 std::vector<MethodResult> run_sampling(const SampleConfig& config, bool keep_points, const StageProgress& progress,
                                        const std::function<void(const MethodResult&)>& on_result) {
   config.validate();
@@ -146,7 +156,7 @@ std::vector<MethodResult> run_sampling(const SampleConfig& config, bool keep_poi
     result.plan = plan_method(config, method);
     if (progress) progress(to_string(method), 0.0);
     Stopwatch stopwatch;
-    result.points = generate_points(config, result.plan, result.notes, progress);
+    generate_points(config, result, progress);
     result.seconds_generate = stopwatch.seconds();
     if (progress) progress("statistics", 0.0);
     stopwatch.restart();
@@ -165,15 +175,22 @@ std::vector<MethodResult> run_sampling(const SampleConfig& config, bool keep_poi
 }
 
 std::string stats_csv_header() {
-  return "dim,grid,method,points,nn_min,nn_median,nn_mean,nn_median_scaled,seconds_generate,seconds_stats,seed,"
+  return "dim,grid,method,points,nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,"
+         "median_displacement,frac_unmoved,neighbour_disorder,lattice_order,seconds_generate,seconds_stats,seed,"
          "protocol,domain_side,requested,notes\n";
 }
 
 std::string stats_csv_row(const SampleConfig& config, const MethodResult& r) {
-  return fmt::format("{},{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.6f},{:.6f},{},{},{:.9g},{},\"{}\"\n", config.dimension,
-                     config.grid, to_string(r.plan.method), r.nearest.points, r.nearest.min, r.nearest.median,
-                     r.nearest.mean, r.nearest.median_scaled, r.seconds_generate, r.seconds_stats, config.seed,
-                     to_string(config.protocol), r.plan.domain.side, r.plan.requested, r.notes);
+  std::string displacement = ",,,,";  // no lattice: the columns stay empty
+  if (r.displacement)
+    displacement = fmt::format("{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", r.displacement->rms, r.displacement->median,
+                               r.displacement->fraction_unmoved, r.displacement->neighbour_disorder,
+                               r.displacement->lattice_order);
+  return fmt::format("{},{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{},{:.6f},{:.6f},{},{},{:.9g},{},\"{}\"\n",
+                     config.dimension, config.grid, to_string(r.plan.method), r.nearest.points, r.nearest.min,
+                     r.nearest.q01, r.nearest.median, r.nearest.mean, r.nearest.median_scaled, displacement,
+                     r.seconds_generate, r.seconds_stats, config.seed, to_string(config.protocol), r.plan.domain.side,
+                     r.plan.requested, r.notes);
 }
 
 std::string rdf_csv_header() { return "dim,method,r,g\n"; }

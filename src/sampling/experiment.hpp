@@ -12,6 +12,7 @@
 #include "sampling/lattice.hpp"
 #include "sampling/point_set.hpp"
 #include "sampling/sobol.hpp"
+#include "stats/lattice_displacement.hpp"
 #include "stats/nearest_neighbour.hpp"
 #include "stats/radial_distribution.hpp"
 
@@ -56,6 +57,8 @@ struct MethodResult {
   MethodPlan plan;
   PointSet points;
   NearestNeighbourSummary nearest;
+  // Lattice methods (cnj, jitter): how far points moved from their sites (every traced point).
+  std::optional<LatticeDisplacementSummary> displacement;
   std::optional<RdfCurve> rdf;
   double seconds_generate = 0.0;
   double seconds_stats = 0.0;
@@ -65,16 +68,18 @@ struct MethodResult {
 // Progress: stage name and fraction done; called from the calling thread only.
 using StageProgress = std::function<void(std::string_view stage, double fraction)>;
 
-PointSet generate_points(const SampleConfig& config, const MethodPlan& plan, std::string& notes,
-                         const StageProgress& progress = {});
+// Fills result.points, result.notes and (for lattice methods) result.displacement for result.plan.
+void generate_points(const SampleConfig& config, MethodResult& result, const StageProgress& progress = {});
 
 // Runs every configured method: generate, then nearest-neighbour statistics (and the RDF if asked).
 // `keep_points`: keep each point set in its result (otherwise it is released after its statistics).
 std::vector<MethodResult> run_sampling(const SampleConfig& config, bool keep_points, const StageProgress& progress = {},
                                        const std::function<void(const MethodResult&)>& on_result = {});
 
-// CSV text. Stats: one row per method, header dim,grid,method,points,nn_min,nn_median,nn_mean,
-// nn_median_scaled,seconds_generate,seconds_stats,seed,protocol,domain_side,requested,notes.
+// CSV text. Stats: one row per method, header dim,grid,method,points,nn_min,nn_q01,nn_median,nn_mean,
+// nn_median_scaled,rms_displacement,median_displacement,frac_unmoved,neighbour_disorder,lattice_order,
+// seconds_generate,seconds_stats,seed,protocol,domain_side,requested,notes; the displacement columns
+// are empty for methods without a lattice (pds, sobol, random).
 std::string stats_csv_header();
 std::string stats_csv_row(const SampleConfig& config, const MethodResult& result);
 // RDF: header dim,method,r,g and one row per bin.

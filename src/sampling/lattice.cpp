@@ -75,4 +75,16 @@ double average_neighbour_distance(int dimension) {
   return sum / (std::pow(3.0, dimension) - 1.0);
 }
 
+std::vector<double> lattice_displacements(const LatticeSpec& lattice, const PointSet& points) {
+  if (points.dimension != lattice.dimension || points.size() != lattice.point_count())
+    throw std::invalid_argument("lattice displacements: the point set is not one point per lattice site");
+  std::vector<double> u(points.coordinates.size());
+  std::vector<double> site(static_cast<std::size_t>(lattice.dimension));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    lattice.point(i, site.data());
+    for (int a = 0; a < lattice.dimension; ++a) u[i * lattice.dimension + a] = points.point(i)[a] - site[a];
+  }
+  return u;
+}
+
 }  // namespace dfvn

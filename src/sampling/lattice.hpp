@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "sampling/point_set.hpp"
 
@@ -22,6 +23,9 @@ struct LatticeSpec {
   // Point `index` (mixed radix, axis 0 fastest) into out[0..N).
   void point(std::uint64_t index, double* out) const;
 };
+
+// x_i - site_i for a point set in lattice order (point i moved from site i): K^N x N, row-major.
+std::vector<double> lattice_displacements(const LatticeSpec& lattice, const PointSet& points);
 
 // Half-width of the uniform jitter: paper: delta/2 = 0.05 whatever K (PROTOCOL.md); unit: 1/(2K).
 double jitter_half_width(const LatticeSpec& lattice);

@@ -86,6 +86,9 @@ NearestNeighbourSummary summarize_nearest_neighbours(std::vector<double> distanc
   const std::size_t n = distances.size();
   s.min = distances.front();
   s.median = (n % 2 == 1) ? distances[n / 2] : 0.5 * (distances[n / 2 - 1] + distances[n / 2]);
+  const double rank = 0.01 * static_cast<double>(n - 1);
+  const auto below = static_cast<std::size_t>(rank);
+  s.q01 = distances[below] + (rank - static_cast<double>(below)) * (distances[std::min(below + 1, n - 1)] - distances[below]);
   const double density = static_cast<double>(n) / points.domain.volume(points.dimension);
   s.median_scaled = s.median * std::pow(density, 1.0 / points.dimension);
   return s;

@@ -30,6 +30,7 @@ struct NearestNeighbourSummary {
   std::uint64_t points = 0;
   double min = 0.0;
   double median = 0.0;  // the mean of the two middle values for an even count (as numpy.median)
+  double q01 = 0.0;     // the 1% quantile (numpy.quantile's default linear interpolation)
   double mean = 0.0;
   // median * (points / domain volume)^(1/N): the median in units of the mean spacing, so that sets
   // of different density compare (a cubic lattice scores 1).

@@ -73,8 +73,15 @@ awk 'BEGIN { for (i = 0; i < 20000; ++i) printf "%.6f,%.6f,%.6f,%.6f,%.6f\n", i*
 
 # sample (the default subcommand)
 "$bin" --dim 3 --grid 5 --quiet >"$work/s.csv" 2>"$work/err" && ok || bad "default subcommand: $(cat "$work/err")"
-head -1 "$work/s.csv" | grep -q "^dim,grid,method,points,nn_min,nn_median,nn_mean,nn_median_scaled,seconds_generate,seconds_stats,seed" &&
+head -1 "$work/s.csv" | grep -q "^dim,grid,method,points,nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,median_displacement,frac_unmoved,neighbour_disorder,lattice_order,seconds_generate,seconds_stats,seed" &&
   ok || bad "stats header: $(head -1 "$work/s.csv")"
+# lattice methods fill the displacement columns, the others leave them empty
+awk -F, '$3 == "cnj" || $3 == "jitter" { if ($10 == "" || $14 == "") exit 1 } $3 == "pds" || $3 == "sobol" { if ($10 != "" || $14 != "") exit 1 }' "$work/s.csv" &&
+  ok || bad "displacement columns: $(cat "$work/s.csv")"
+# field --diagnose: one CSV row, and --noise is checked
+"$bin" field --diagnose --dim 4 --noise turning-bands --diagnose-points 2000 >"$work/d.csv" 2>"$work/err" &&
+  [[ $(wc -l <"$work/d.csv") -eq 2 ]] && head -1 "$work/d.csv" | grep -q "^dim,noise,frequency" && ok || bad "field --diagnose: $(cat "$work/err")"
+expect_error "unknown noise basis" "" field --dim 3 --noise perlin9
 [[ $(wc -l <"$work/s.csv") -eq 5 ]] && ok || bad "stats rows (cnj, jitter, pds, sobol)"
 "$bin" --help >"$work/out" 2>&1 && grep -q -- "--step-scale" "$work/out" && grep -q -- "--protocol" "$work/out" && ok || bad "sample --help"
 expect_error "sample dim" "" --dim 9 --grid 4
