@@ -19,7 +19,8 @@ rows=$(echo $dims | wc -w)
   for d in $dims; do
     for m in $methods; do
       awk -F, -v d="$d" -v m="$m" 'NR > 1 && $1 == d && $2 == m { print $3, $4 }' "$dir/rdf.csv" >"$tmp/$d-$m.dat"
-      median=$(awk -F, -v d="$d" -v m="$m" 'NR > 1 && $1 == d && $3 == m { print $6 }' "$dir/table1.csv")
+      median=$(awk -F, -v d="$d" -v m="$m" 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "nn_median") c = i }
+                                            NR > 1 && $1 == d && $3 == m { print $c }' "$dir/table1.csv")
       echo "set title '${d}D $m (median ${median:0:6})'"
       echo "unset arrow; set arrow from $median, graph 0 to $median, graph 1 nohead dashtype 2 linecolor rgb 'red' linewidth 1.5"
       echo "set label 1 'g = 1' at graph 0.02, first 1.08 textcolor rgb 'gray40'"

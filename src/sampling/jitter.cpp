@@ -6,9 +6,13 @@
 namespace dfvn {
 
 PointSet jittered_lattice(const LatticeSpec& lattice, std::uint64_t seed, int threads) {
+  return jittered_lattice(lattice, jitter_half_width(lattice), seed, threads);
+}
+
+PointSet jittered_lattice(const LatticeSpec& lattice, double half_width, std::uint64_t seed, int threads) {
   const int n = lattice.dimension;
   const auto count = static_cast<std::int64_t>(lattice.point_count());
-  const double h = jitter_half_width(lattice);
+  const double h = half_width;
   PointSet out{n, std::vector<double>(static_cast<std::size_t>(count) * n), Box{0.0, 1.0}};
 #pragma omp parallel for schedule(static) num_threads(resolve_threads(threads))
   for (std::int64_t i = 0; i < count; ++i) {

@@ -1,0 +1,410 @@
+#include "reproduce/cnj_study.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <numbers>
+#include <stdexcept>
+#include <tuple>
+
+#include <fmt/format.h>
+
+#include "core/stopwatch.hpp"
+#include "io/atomic_file.hpp"
+#include "sampling/curl_noise_jitter.hpp"
+#include "sampling/jitter.hpp"
+#include "sampling/lattice.hpp"
+#include "stats/lattice_displacement.hpp"
+#include "stats/nearest_neighbour.hpp"
+
+namespace dfvn {
+
+void CnjStudyConfig::validate() const {
+  if (dimensions.empty()) throw std::invalid_argument("--dims must name at least one dimension");
+  for (int d : dimensions) cnj_study_grid(d);
+  if (seeds < 1 || seeds > 1000) throw std::invalid_argument(fmt::format("--seeds must be in 1..1000, got {}", seeds));
+  if (bases.empty() || frequencies.empty() || step_scales.empty())
+    throw std::invalid_argument("the study needs at least one basis, frequency and step scale");
+  for (double f : frequencies)
+    if (!std::isfinite(f) || !(f > 0.0)) throw std::invalid_argument("study frequencies must be finite and positive");
+  for (double c : step_scales)
+    if (!std::isfinite(c) || !(c > 0.0)) throw std::invalid_argument("study step scales must be finite and positive");
+}
+
+int cnj_study_grid(int dimension) {
+  switch (dimension) {
+    case 2: return 24;
+    case 3: return 12;
+    case 4: return 8;
+    case 5: return 6;
+    case 6: return 5;
+    case 7: return 5;
+    case 8: return 4;
+    default: throw std::invalid_argument(fmt::format("the CNJ study covers dimensions 2..8, not {}", dimension));
+  }
+}
+
+namespace {
+
+// Interior sites: every lattice coordinate index in [1, K-2].
+std::vector<unsigned char> interior_mask(const LatticeSpec& lattice) {
+  const std::uint64_t count = lattice.point_count();
+  std::vector<unsigned char> mask(count);
+  const auto k = static_cast<std::uint64_t>(lattice.grid);
+  for (std::uint64_t i = 0; i < count; ++i) {
+    bool inside = true;
+    std::uint64_t rest = i;
+    for (int a = 0; a < lattice.dimension; ++a, rest /= k) {
+      const std::uint64_t digit = rest % k;
+      inside = inside && digit >= 1 && digit + 2 <= k;
+    }
+    mask[i] = inside;
+  }
+  return mask;
+}
+
+double quantile_of_sorted(const std::vector<double>& sorted, double q) {
+  const double rank = q * static_cast<double>(sorted.size() - 1);
+  const auto below = static_cast<std::size_t>(rank);
+  const std::size_t above = std::min(below + 1, sorted.size() - 1);
+  return sorted[below] + (rank - static_cast<double>(below)) * (sorted[above] - sorted[below]);
+}
+
+// NN distances of every point, summarised over the interior ones, in spacings.
+Packing interior_packing(const PointSet& points, const std::vector<unsigned char>& interior, double spacing, int threads) {
+  const std::vector<double> distances = nearest_neighbour_distances(points, KnnBackend::nanoflann, threads);
+  std::vector<double> inner;
+  for (std::size_t i = 0; i < distances.size(); ++i)
+    if (interior[i]) inner.push_back(distances[i] / spacing);
+  if (inner.empty()) throw std::logic_error("the study lattice has no interior points");
+  std::sort(inner.begin(), inner.end());
+  return {inner.front(), quantile_of_sorted(inner, 0.01)};
+}
+
+// Largest h in (0, 1/2] with (sin(2 pi h) / (2 pi h))^2 = order (the function falls from 1 to 0 there).
+double jitter_half_width_for_order(double order) {
+  auto g = [](double h) {
+    const double x = 2.0 * std::numbers::pi * h;
+    const double s = std::sin(x) / x;
+    return s * s;
+  };
+  if (order <= 0.0) return 0.5;
+  if (order >= 1.0) return 1e-9;
+  double lo = 1e-9, hi = 0.5;
+  for (int i = 0; i < 100; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (g(mid) > order ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+Packing jitter_packing(const LatticeSpec& lattice, double half_width_spacings, std::uint64_t seed,
+                       const std::vector<unsigned char>& interior, int threads) {
+  const double a = lattice.spacing();
+  return interior_packing(jittered_lattice(lattice, half_width_spacings * a, seed, threads), interior, a, threads);
+}
+
+}  // namespace
+
+CnjStudyResult run_cnj_study(const CnjStudyConfig& config, const StageProgress& progress) {
+  config.validate();
+  Stopwatch stopwatch;
+  CnjStudyResult result;
+  result.config = config;
+  const std::size_t runs_per_dimension =
+      config.bases.size() * config.frequencies.size() * config.step_scales.size() * static_cast<std::size_t>(config.seeds);
+  for (int n : config.dimensions) {
+    const LatticeSpec lattice{n, cnj_study_grid(n), Protocol::unit};
+    const double a = lattice.spacing();
+    const auto interior = interior_mask(lattice);
+    const std::string stage = fmt::format("cnj-study {}D", n);
+    std::size_t done = 0;
+    for (NoiseBasis basis : config.bases)
+      for (double frequency : config.frequencies)
+        for (double step_scale : config.step_scales)
+          for (int s = 0; s < config.seeds; ++s) {
+            if (progress) progress(stage, static_cast<double>(done++) / static_cast<double>(runs_per_dimension));
+            CnjStudyRow row;
+            row.dimension = n;
+            row.grid = lattice.grid;
+            row.basis = basis;
+            row.frequency = frequency;
+            row.step_scale = step_scale;
+            row.seed = config.seed + static_cast<std::uint64_t>(s);
+            CnjOptions options;
+            options.noise = basis;
+            options.frequency = frequency;
+            options.step_scale = step_scale;
+            const CnjResult cnj = curl_noise_jitter(lattice, options, row.seed, config.threads);
+            // Every traced point, inside [0,1]^N or not: x = site + displacement.
+            PointSet moved{n, cnj.displacements, Box{0.0, 1.0}};
+            std::vector<double> site(static_cast<std::size_t>(n));
+            for (std::size_t i = 0; i < moved.size(); ++i) {
+              lattice.point(i, site.data());
+              for (int j = 0; j < n; ++j) moved.coordinates[i * n + j] += site[j];
+            }
+            const LatticeDisplacementSummary d = summarize_lattice_displacements(n, lattice.grid, a, cnj.displacements);
+            row.rms_displacement = d.rms / a;
+            row.median_over_rms = d.rms > 0.0 ? d.median / d.rms : 0.0;
+            row.fraction_unmoved = d.fraction_unmoved;
+            row.neighbour_disorder = d.neighbour_disorder;
+            row.lattice_order = d.lattice_order;
+            row.skipped_update_fraction =
+                static_cast<double>(cnj.trace_stats.skipped_updates) / static_cast<double>(moved.size());
+            row.cnj = interior_packing(moved, interior, a, config.threads);
+            row.h_rms = row.rms_displacement * std::sqrt(3.0 / n);
+            row.h_disorder = row.neighbour_disorder / std::sqrt(2.0 * n / 3.0);
+            row.h_order = jitter_half_width_for_order(row.lattice_order);
+            row.jitter_rms = jitter_packing(lattice, row.h_rms, row.seed, interior, config.threads);
+            row.jitter_disorder = jitter_packing(lattice, row.h_disorder, row.seed, interior, config.threads);
+            row.jitter_order = jitter_packing(lattice, row.h_order, row.seed, interior, config.threads);
+            result.rows.push_back(row);
+          }
+    for (double h : {0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.45, 0.5, 0.6, 0.7}) {
+      JitterCurvePoint p;
+      p.dimension = n;
+      p.half_width = h;
+      const PointSet points = jittered_lattice(lattice, h * a, config.seed, config.threads);
+      const auto d = summarize_lattice_displacements(n, lattice.grid, a, lattice_displacements(lattice, points));
+      p.rms_displacement = d.rms / a;
+      p.neighbour_disorder = d.neighbour_disorder;
+      p.lattice_order = d.lattice_order;
+      p.packing = interior_packing(points, interior, a, config.threads);
+      result.jitter_curve.push_back(p);
+    }
+    if (progress) progress(stage, 1.0);
+  }
+  result.seconds = stopwatch.seconds();
+  return result;
+}
+
+namespace {
+
+// Means over seeds of one (dimension, basis, frequency, step scale) cell.
+struct CellMean {
+  int dimension = 0;
+  NoiseBasis basis{};
+  double frequency = 0.0, step_scale = 0.0;
+  int runs = 0;
+  double rms = 0.0, median_over_rms = 0.0, unmoved = 0.0, disorder = 0.0, order = 0.0, skipped = 0.0;
+  double q01 = 0.0, min = 0.0;
+  double q01_vs_rms = 0.0, min_vs_rms = 0.0, q01_vs_disorder = 0.0, q01_vs_order = 0.0;  // ratios CNJ / jitter
+};
+
+std::vector<CellMean> cell_means(const CnjStudyResult& result) {
+  std::map<std::tuple<int, int, double, double>, CellMean> cells;
+  for (const CnjStudyRow& r : result.rows) {
+    CellMean& c = cells[{r.dimension, static_cast<int>(r.basis), r.frequency, r.step_scale}];
+    c.dimension = r.dimension;
+    c.basis = r.basis;
+    c.frequency = r.frequency;
+    c.step_scale = r.step_scale;
+    ++c.runs;
+    c.rms += r.rms_displacement;
+    c.median_over_rms += r.median_over_rms;
+    c.unmoved += r.fraction_unmoved;
+    c.disorder += r.neighbour_disorder;
+    c.order += r.lattice_order;
+    c.skipped += r.skipped_update_fraction;
+    c.q01 += r.cnj.nn_q01;
+    c.min += r.cnj.nn_min;
+    // Ratios of seed means are formed below; accumulate the jitter sums here.
+    c.q01_vs_rms += r.jitter_rms.nn_q01;
+    c.min_vs_rms += r.jitter_rms.nn_min;
+    c.q01_vs_disorder += r.jitter_disorder.nn_q01;
+    c.q01_vs_order += r.jitter_order.nn_q01;
+  }
+  std::vector<CellMean> out;
+  for (auto& [key, c] : cells) {
+    const double n = c.runs;
+    for (double* v : {&c.rms, &c.median_over_rms, &c.unmoved, &c.disorder, &c.order, &c.skipped, &c.q01, &c.min}) *v /= n;
+    c.q01_vs_rms = c.q01 / (c.q01_vs_rms / n);
+    c.min_vs_rms = c.min / (c.min_vs_rms / n);
+    c.q01_vs_disorder = c.q01 / (c.q01_vs_disorder / n);
+    c.q01_vs_order = c.q01 / (c.q01_vs_order / n);
+    out.push_back(c);
+  }
+  return out;
+}
+
+const CellMean* find_cell(const std::vector<CellMean>& cells, int dimension, NoiseBasis basis, double frequency,
+                          double step_scale) {
+  for (const CellMean& c : cells)
+    if (c.dimension == dimension && c.basis == basis && c.frequency == frequency && c.step_scale == step_scale) return &c;
+  return nullptr;
+}
+
+bool moves_points(const CellMean& c) { return c.unmoved <= 0.01 && c.median_over_rms >= 0.5; }
+bool beats_jitter_at_equal_rms(const CellMean& c) { return c.q01_vs_rms > 1.0 && c.min_vs_rms > 1.0; }
+
+std::string verdict(double ratio) {
+  return ratio > 1.0 ? fmt::format("**x{:.2f}** (CNJ wins)", ratio) : fmt::format("x{:.2f} (jitter wins)", ratio);
+}
+
+}  // namespace
+
+std::optional<CnjDefaultsChoice> choose_cnj_defaults(const CnjStudyResult& result) {
+  const auto cells = cell_means(result);
+  std::optional<CnjDefaultsChoice> best;
+  for (double f : result.config.frequencies)
+    for (double c : result.config.step_scales) {
+      bool qualifies = true;
+      double log_sum = 0.0;
+      for (int n : result.config.dimensions) {
+        const CellMean* cell = find_cell(cells, n, kDefaultNoiseBasis, f, c);
+        if (!cell || !moves_points(*cell) || !beats_jitter_at_equal_rms(*cell)) {
+          qualifies = false;
+          break;
+        }
+        log_sum += std::log(cell->q01_vs_disorder);
+      }
+      if (!qualifies) continue;
+      const double score = std::exp(log_sum / static_cast<double>(result.config.dimensions.size()));
+      if (!best || score > best->score) best = CnjDefaultsChoice{f, c, score};
+    }
+  return best;
+}
+
+std::string cnj_study_markdown(const CnjStudyResult& result) {
+  const CnjStudyConfig& cfg = result.config;
+  const auto cells = cell_means(result);
+  const CnjOptions defaults;
+  std::string md = "# CNJ against jitter: the study\n\n";
+  md += fmt::format(
+      "Curl noise jittering (one RK4 step + Gauss-Newton reprojection) of a cell-centred K^N lattice in [0,1]^N, "
+      "against uniform jitter of the same lattice, {} seed(s) per cell (seeds {}..{}). Packing = nearest-neighbour "
+      "distance over the interior sites (at least one spacing from the lattice's outer layer; no point is dropped), "
+      "nn_q01 = its 1% quantile, all in lattice spacings. Each CNJ run is compared with three jitter runs of the "
+      "same lattice and seed, whose half-width h matches CNJ's RMS displacement (h = rms sqrt(3/N)), neighbour "
+      "disorder (RMS relative displacement of lattice neighbours; h = disorder / sqrt(2N/3)) or lattice order "
+      "(surviving Bragg amplitude; (sin 2 pi h / 2 pi h)^2 = order). Ratios are CNJ / jitter of seed means; "
+      "above 1, CNJ packs better. {:.0f} s on this machine ({} thread(s) requested, 0 = all cores).\n\n",
+      cfg.seeds, cfg.seed, cfg.seed + static_cast<std::uint64_t>(cfg.seeds) - 1, result.seconds, cfg.threads);
+  md += "Lattices: ";
+  for (std::size_t i = 0; i < cfg.dimensions.size(); ++i) {
+    const int n = cfg.dimensions[i], k = cnj_study_grid(n);
+    md += fmt::format("{}{}D K={} ({:.0f} points, {:.0f} interior)", i ? ", " : "", n, k, std::pow(k, n), std::pow(k - 2, n));
+  }
+  md += ".\n\n";
+
+  // The answers, per dimension: the library defaults, then the best cell of each comparison.
+  md += "## Answers per dimension\n\n";
+  md += fmt::format("For the library defaults ({} noise, frequency {:g} cycles per spacing, step scale {:g}):\n\n",
+                    to_string(defaults.noise), defaults.frequency, defaults.step_scale);
+  md += "| n | RMS move | median/RMS | unmoved | q01 vs jitter at equal RMS | nn_min vs jitter at equal RMS | "
+        "q01 at equal disorder | q01 at equal order |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  for (int n : cfg.dimensions) {
+    const CellMean* c = find_cell(cells, n, defaults.noise, defaults.frequency, defaults.step_scale);
+    if (!c) {
+      md += fmt::format("| {} | (defaults not in the studied grid) | | | | | | |\n", n);
+      continue;
+    }
+    md += fmt::format("| {} | {:.3f} | {:.2f} | {:.2f}% | {} | {} | {} | {} |\n", n, c->rms, c->median_over_rms,
+                      100.0 * c->unmoved, verdict(c->q01_vs_rms), verdict(c->min_vs_rms), verdict(c->q01_vs_disorder),
+                      verdict(c->q01_vs_order));
+  }
+  md += "\nThe best any studied cell of each basis does (largest ratio; its frequency / step scale in brackets):\n\n";
+  md += "| n | basis | best q01 at equal RMS | best q01 at equal disorder | best q01 at equal order |\n"
+        "| --- | --- | --- | --- | --- |\n";
+  for (int n : cfg.dimensions)
+    for (NoiseBasis b : cfg.bases) {
+      const CellMean *best_rms = nullptr, *best_disorder = nullptr, *best_order = nullptr;
+      for (const CellMean& c : cells) {
+        if (c.dimension != n || c.basis != b) continue;
+        if (!best_rms || c.q01_vs_rms > best_rms->q01_vs_rms) best_rms = &c;
+        if (!best_disorder || c.q01_vs_disorder > best_disorder->q01_vs_disorder) best_disorder = &c;
+        if (!best_order || c.q01_vs_order > best_order->q01_vs_order) best_order = &c;
+      }
+      if (!best_rms) continue;
+      md += fmt::format("| {} | {} | x{:.2f} ({:g} / {:g}) | x{:.2f} ({:g} / {:g}) | x{:.2f} ({:g} / {:g}) |\n", n,
+                        to_string(b), best_rms->q01_vs_rms, best_rms->frequency, best_rms->step_scale,
+                        best_disorder->q01_vs_disorder, best_disorder->frequency, best_disorder->step_scale,
+                        best_order->q01_vs_order, best_order->frequency, best_order->step_scale);
+    }
+
+  // The reading, from the numbers.
+  md += "\n## Reading\n\n";
+  for (int n : cfg.dimensions) {
+    const CellMean* c = find_cell(cells, n, defaults.noise, defaults.frequency, defaults.step_scale);
+    if (!c) continue;
+    const char* rms_word = c->q01_vs_rms > 1.0 ? "beats" : "does not beat";
+    const char* disorder_word = c->q01_vs_disorder > 1.0 ? "beats" : "does not beat";
+    const char* order_word = c->q01_vs_order > 1.0 ? "beats" : "does not beat";
+    md += fmt::format(
+        "- **{}D**: with the defaults, CNJ {} jitter at equal RMS displacement (q01 x{:.2f}, min x{:.2f}), {} it at "
+        "equal neighbour disorder (x{:.2f}) and {} it at equal lattice order (x{:.2f}); it moves every point "
+        "({:.2f}% under 1% of a spacing, median/RMS {:.2f}) but keeps {:.0f}% of the lattice's Bragg amplitude "
+        "(jitter at that RMS: {:.0f}%).\n",
+        n, rms_word, c->q01_vs_rms, c->min_vs_rms, disorder_word, c->q01_vs_disorder, order_word, c->q01_vs_order,
+        100.0 * c->unmoved, c->median_over_rms, 100.0 * c->order,
+        100.0 * std::pow(std::sin(2 * std::numbers::pi * c->rms * std::sqrt(3.0 / n)) /
+                             (2 * std::numbers::pi * c->rms * std::sqrt(3.0 / n)), 2));
+  }
+  for (int n : cfg.dimensions) {
+    const CellMean* s = find_cell(cells, n, NoiseBasis::simplex, defaults.frequency, defaults.step_scale);
+    if (!s) continue;
+    md += fmt::format("- **simplex {}D** (same frequency and step scale): {:.1f}% of points unmoved, median/RMS "
+                      "displacement {:.2g}, q01 vs jitter at equal RMS x{:.2f}.\n",
+                      n, 100.0 * s->unmoved, s->median_over_rms, s->q01_vs_rms);
+  }
+  md += "- Gains at equal RMS displacement that shrink or vanish at equal neighbour disorder and equal lattice order "
+        "come from coherent motion: a low-frequency field moves neighbours together, which keeps nearest-neighbour "
+        "distances large but also keeps the lattice.\n";
+
+  const auto choice = choose_cnj_defaults(result);
+  md += "\n## The defaults and the rule that chose them\n\n";
+  md += "Rule (src/reproduce/cnj_study.hpp, choose_cnj_defaults): on the default basis and means over seeds, keep "
+        "the (frequency, step scale) pairs that in every studied dimension move points (at most 1% unmoved, "
+        "median/RMS displacement at least 0.5) and beat jitter at equal RMS displacement in both nn_q01 and nn_min; "
+        "take the one with the largest geometric mean over dimensions of the q01 ratio at equal neighbour disorder, "
+        "the comparison that does not reward moving neighbours together.\n\n";
+  if (choice)
+    md += fmt::format("The rule picks frequency {:g} and step scale {:g} (score {:.3f}); the library defaults are {:g} "
+                      "and {:g}: {}.\n",
+                      choice->frequency, choice->step_scale, choice->score, defaults.frequency, defaults.step_scale,
+                      choice->frequency == defaults.frequency && choice->step_scale == defaults.step_scale
+                          ? "the same"
+                          : "DIFFERENT (run on the full grid and seeds before changing them)");
+  else
+    md += "No studied pair meets the rule's conditions in every dimension here.\n";
+
+  md += "\n## Every cell\n\n| n | basis | frequency | step scale | RMS move | median/RMS | unmoved | disorder | order | "
+        "skipped GN | q01 | min | q01/jit(rms) | min/jit(rms) | q01/jit(disorder) | q01/jit(order) |\n"
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  for (const CellMean& c : cells)
+    md += fmt::format("| {} | {} | {:g} | {:g} | {:.3f} | {:.2f} | {:.2f}% | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | "
+                      "{:.2f} | {:.2f} | {:.2f} | {:.2f} |\n",
+                      c.dimension, to_string(c.basis), c.frequency, c.step_scale, c.rms, c.median_over_rms,
+                      100.0 * c.unmoved, c.disorder, c.order, c.skipped, c.q01, c.min, c.q01_vs_rms, c.min_vs_rms,
+                      c.q01_vs_disorder, c.q01_vs_order);
+  return md;
+}
+
+std::string write_cnj_study(const CnjStudyResult& result, const Log& log) {
+  const std::filesystem::path dir = result.config.out_dir;
+  std::string rows =
+      "dim,grid,noise,frequency,step_scale,seed,rms_displacement,median_over_rms,frac_unmoved,neighbour_disorder,"
+      "lattice_order,skipped_update_fraction,cnj_nn_min,cnj_nn_q01,h_rms,jitter_rms_nn_min,jitter_rms_nn_q01,"
+      "h_disorder,jitter_disorder_nn_min,jitter_disorder_nn_q01,h_order,jitter_order_nn_min,jitter_order_nn_q01\n";
+  for (const CnjStudyRow& r : result.rows)
+    rows += fmt::format("{},{},{},{:g},{:g},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},"
+                        "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
+                        r.dimension, r.grid, to_string(r.basis), r.frequency, r.step_scale, r.seed, r.rms_displacement,
+                        r.median_over_rms, r.fraction_unmoved, r.neighbour_disorder, r.lattice_order,
+                        r.skipped_update_fraction, r.cnj.nn_min, r.cnj.nn_q01, r.h_rms, r.jitter_rms.nn_min,
+                        r.jitter_rms.nn_q01, r.h_disorder, r.jitter_disorder.nn_min, r.jitter_disorder.nn_q01, r.h_order,
+                        r.jitter_order.nn_min, r.jitter_order.nn_q01);
+  std::string curve = "dim,half_width,rms_displacement,neighbour_disorder,lattice_order,nn_min,nn_q01\n";
+  for (const JitterCurvePoint& p : result.jitter_curve)
+    curve += fmt::format("{},{:g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n", p.dimension, p.half_width, p.rms_displacement,
+                         p.neighbour_disorder, p.lattice_order, p.packing.nn_min, p.packing.nn_q01);
+  const std::string md = cnj_study_markdown(result);
+  write_file_atomically((dir / "cnj_study.csv").string(), rows);
+  write_file_atomically((dir / "cnj_study_jitter.csv").string(), curve);
+  write_file_atomically((dir / "cnj_study.md").string(), md);
+  plot_figure("plot_cnj_study.sh", dir.string(), "cnj_study.png", log);
+  return md;
+}
+
+}  // namespace dfvn

@@ -1,0 +1,99 @@
+// The CNJ study: curl noise jittering (each noise basis) against random jitter over a grid of noise
+// frequencies and step scales, compared at equal RMS displacement, equal neighbour disorder and equal
+// lattice order. It chooses the CNJ defaults (CnjOptions) by a stated rule.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "noise/noise_functions.hpp"
+#include "reproduce/reproduce.hpp"
+
+namespace dfvn {
+
+struct CnjStudyConfig {
+  std::vector<int> dimensions = {3, 4, 5, 6, 7};
+  std::uint64_t seed = 1;  // seeds seed .. seed + seeds - 1
+  int seeds = 3;
+  std::vector<NoiseBasis> bases = {NoiseBasis::simplex, NoiseBasis::turning_bands};
+  std::vector<double> frequencies = {0.1, 0.2, 0.35, 0.5, 1.0};  // cycles per lattice spacing
+  std::vector<double> step_scales = {0.2, 0.35, 0.5};           // t = C dbar(N) spacing
+  int threads = 0;
+  std::string out_dir = "out/cnj-study";
+
+  void validate() const;  // throws std::invalid_argument naming the option
+};
+
+// The lattice of the study: K^N cell centres of [0,1]^N (spacing 1/K), with K = 12, 8, 6, 5, 5 for
+// 3D..7D (2D: 24, 8D: 4) so that every run stays below ~80,000 points; statistics over the interior
+// sites (at least one spacing from the lattice's outer layer), whose neighbours are all present, so no
+// point is dropped and no boundary effect enters.
+int cnj_study_grid(int dimension);
+
+// Nearest-neighbour packing over the interior points, in lattice spacings.
+struct Packing {
+  double nn_min = 0.0;
+  double nn_q01 = 0.0;
+};
+
+// One CNJ run and the three jitter runs matched to it (same lattice and seed).
+struct CnjStudyRow {
+  int dimension = 0;
+  int grid = 0;
+  NoiseBasis basis{};
+  double frequency = 0.0;
+  double step_scale = 0.0;
+  std::uint64_t seed = 0;
+  // CNJ, displacements in spacings, over every lattice point.
+  double rms_displacement = 0.0;
+  double median_over_rms = 0.0;
+  double fraction_unmoved = 0.0;
+  double neighbour_disorder = 0.0;
+  double lattice_order = 0.0;
+  double skipped_update_fraction = 0.0;  // Gauss-Newton updates not taken, per point
+  Packing cnj;
+  // Uniform jitter of half-width h (spacings) chosen to match CNJ's RMS displacement
+  // (h = rms sqrt(3/N)), neighbour disorder (h = disorder / sqrt(2N/3)) and lattice order
+  // ((sin 2 pi h / 2 pi h)^2 = order, 0 < h <= 1/2).
+  double h_rms = 0.0, h_disorder = 0.0, h_order = 0.0;
+  Packing jitter_rms, jitter_disorder, jitter_order;
+};
+
+// The jitter reference curve of the figure: uniform jitter at half-widths 0.05 .. 0.7 spacings.
+struct JitterCurvePoint {
+  int dimension = 0;
+  double half_width = 0.0;
+  double rms_displacement = 0.0, neighbour_disorder = 0.0, lattice_order = 0.0;
+  Packing packing;
+};
+
+struct CnjStudyResult {
+  CnjStudyConfig config;
+  std::vector<CnjStudyRow> rows;
+  std::vector<JitterCurvePoint> jitter_curve;
+  double seconds = 0.0;
+};
+
+CnjStudyResult run_cnj_study(const CnjStudyConfig& config, const StageProgress& progress = {});
+
+// The rule that picks the CNJ defaults, applied to the default basis (kDefaultNoiseBasis), on means
+// over seeds: among the (frequency, step scale) pairs that in EVERY studied dimension move points
+// (frac_unmoved <= 1%, median/RMS displacement >= 0.5) and beat jitter at equal RMS displacement in
+// both nn_q01 and nn_min, take the one with the largest geometric mean over dimensions of
+// nn_q01(CNJ) / nn_q01(jitter at equal neighbour disorder): the comparison that does not reward moving
+// neighbours together (a translation scores zero disorder). nullopt when no pair qualifies.
+struct CnjDefaultsChoice {
+  double frequency = 0.0;
+  double step_scale = 0.0;
+  double score = 0.0;  // the geometric mean above
+};
+std::optional<CnjDefaultsChoice> choose_cnj_defaults(const CnjStudyResult& result);
+
+// DIR/cnj_study.csv (one row per run), DIR/cnj_study_jitter.csv (the reference curve), DIR/cnj_study.md
+// (the reading) and, with gnuplot, DIR/cnj_study.png. Returns the Markdown.
+std::string write_cnj_study(const CnjStudyResult& result, const Log& log);
+std::string cnj_study_markdown(const CnjStudyResult& result);
+
+}  // namespace dfvn

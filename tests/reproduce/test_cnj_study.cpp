@@ -1,0 +1,79 @@
+// A reduced CNJ study (3D, one seed, two frequencies): the matching of the jitter runs, the measures,
+// and the reading.
+#include "reproduce/cnj_study.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace dfvn {
+namespace {
+
+CnjStudyResult reduced_study() {
+  CnjStudyConfig config;
+  config.dimensions = {3};
+  config.seeds = 1;
+  config.frequencies = {0.2, 1.0};
+  config.step_scales = {0.35};
+  return run_cnj_study(config);
+}
+
+TEST(CnjStudy, JitterRunsAreMatchedToEachCnjRun) {
+  const CnjStudyResult result = reduced_study();
+  ASSERT_EQ(result.rows.size(), 4u);  // 2 bases x 2 frequencies
+  for (const CnjStudyRow& r : result.rows) {
+    // Uniform jitter of half-width h has RMS displacement h sqrt(N/3) and neighbour disorder h sqrt(2N/3).
+    EXPECT_NEAR(r.h_rms * std::sqrt(1.0), r.rms_displacement, 1e-12);
+    EXPECT_NEAR(r.h_disorder * std::sqrt(2.0), r.neighbour_disorder, 1e-12);
+    const double x = 2 * std::numbers::pi * r.h_order;
+    if (r.lattice_order > 1e-3) EXPECT_NEAR(std::pow(std::sin(x) / x, 2), r.lattice_order, 1e-9);
+    EXPECT_GT(r.cnj.nn_q01, 0.0);
+    EXPECT_GE(r.cnj.nn_q01, r.cnj.nn_min);
+    EXPECT_GT(r.jitter_rms.nn_q01, 0.0);
+    if (r.basis == NoiseBasis::turning_bands) {
+      EXPECT_LE(r.fraction_unmoved, 0.01);
+      EXPECT_GE(r.median_over_rms, 0.5);
+      // The step scale sets the trace time t = C dbar(3) spacing; with RMS |c| = 1 the move is at most
+      // about t (a curved path or a field weaker than its RMS in this small box makes it shorter).
+      EXPECT_GT(r.rms_displacement, 0.3 * 0.35 * 1.4164);
+      EXPECT_LT(r.rms_displacement, 1.5 * 0.35 * 1.4164);
+    }
+  }
+  // Lower frequency = more coherent motion: neighbours move more alike relative to how far they move
+  // (uniform jitter: disorder / RMS = sqrt(2)).
+  const auto coherence = [&](double f) {
+    for (const CnjStudyRow& r : result.rows)
+      if (r.basis == NoiseBasis::turning_bands && r.frequency == f) return r.neighbour_disorder / r.rms_displacement;
+    return -1.0;
+  };
+  EXPECT_LT(coherence(0.2), coherence(1.0));
+  EXPECT_LT(coherence(0.2), std::sqrt(2.0));
+  EXPECT_EQ(result.jitter_curve.size(), 12u);
+}
+
+TEST(CnjStudy, ReadingAnswersEveryComparisonAndStatesTheRule) {
+  const CnjStudyResult result = reduced_study();
+  const std::string md = cnj_study_markdown(result);
+  EXPECT_NE(md.find("## Answers per dimension"), std::string::npos);
+  EXPECT_NE(md.find("at equal RMS displacement"), std::string::npos);
+  EXPECT_NE(md.find("at equal neighbour disorder"), std::string::npos);
+  EXPECT_NE(md.find("at equal lattice order"), std::string::npos);
+  EXPECT_NE(md.find("Rule (src/reproduce/cnj_study.hpp"), std::string::npos);
+  // The rule is a pure function of the rows.
+  const auto a = choose_cnj_defaults(result), b = choose_cnj_defaults(result);
+  EXPECT_EQ(a.has_value(), b.has_value());
+  if (a) EXPECT_EQ(a->frequency, b->frequency);
+}
+
+TEST(CnjStudy, RejectsBadConfigurations) {
+  CnjStudyConfig config;
+  config.dimensions = {9};
+  EXPECT_THROW(config.validate(), std::invalid_argument);
+  config.dimensions = {3};
+  config.seeds = 0;
+  EXPECT_THROW(config.validate(), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace dfvn
