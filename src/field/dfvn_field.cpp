@@ -5,14 +5,14 @@
 #include <string>
 
 #include "field/cross_product.hpp"
+#include "noise/noise_domain.hpp"
 
 namespace dfvn {
 
 template <int N>
 DfvnField<N>::DfvnField(std::uint64_t seed, double frequency, double amplitude)
     : noise_(seed), frequency_(frequency), amplitude_(amplitude) {
-  if (!std::isfinite(frequency) || frequency <= 0.0)
-    throw std::invalid_argument("frequency must be finite and positive, got " + std::to_string(frequency));
+  check_noise_frequency(frequency);
   if (!std::isfinite(amplitude) || amplitude <= 0.0)
     throw std::invalid_argument("amplitude must be finite and positive, got " + std::to_string(amplitude));
 }

@@ -28,7 +28,9 @@ class DfvnField {
  public:
   static constexpr int kFunctions = N - 1;
 
-  // Throws std::invalid_argument unless frequency and amplitude are finite and positive.
+  // Throws std::invalid_argument unless the frequency is in [kMinNoiseFrequency, kMaxNoiseFrequency]
+  // (noise/noise_domain.hpp) and the amplitude is finite and positive. evaluate(x) needs frequency * x
+  // inside the noise domain; callers check their points before evaluating.
   DfvnField(std::uint64_t seed, double frequency = 1.0, double amplitude = field_amplitude(N));
 
   FieldSample<N> evaluate(const Vec<N>& x) const;

@@ -3,8 +3,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "core/parallel.hpp"
 #include "field/dfvn_field.hpp"
+#include "noise/noise_domain.hpp"
 
 namespace dfvn {
 
@@ -12,6 +15,12 @@ std::string evaluate_field_csv(const FieldQuery& query, const PointTable& points
   if (points.dimension != query.dimension)
     throw std::invalid_argument("point table has dimension " + std::to_string(points.dimension) +
                                 ", query has " + std::to_string(query.dimension));
+  check_noise_frequency(query.frequency);
+  // Checked here, not in the parallel loop: an exception must not escape an OpenMP region.
+  for (std::size_t i = 0; i < points.rows(); ++i)
+    for (int j = 0; j < points.dimension; ++j)
+      if (!is_noise_argument(query.frequency * points.row(i)[j]))
+        check_noise_argument(points.row(i)[j], query.frequency, fmt::format("point {}, column {}", i + 1, j + 1));
   return dispatch_dimension(query.dimension, [&]<int N>() {
     const DfvnField<N> field(query.seed, query.frequency);
     const auto rows = static_cast<std::int64_t>(points.rows());

@@ -49,11 +49,14 @@ struct TraceStats {
   // Updates not taken: rank-deficient or ill-conditioned Jacobian, non-finite, longer than
   // max_update_ratio x step, or raising the residual.
   std::int64_t skipped_updates = 0;
+  // Evaluations beyond the edge of the noise domain, where a trace stops (noise/noise_domain.hpp).
+  std::int64_t outside_domain = 0;
 
   TraceStats& operator+=(const TraceStats& other) {
     field_evaluations += other.field_evaluations;
     reprojection_updates += other.reprojection_updates;
     skipped_updates += other.skipped_updates;
+    outside_domain += other.outside_domain;
     return *this;
   }
 };

@@ -5,9 +5,11 @@
 
 #include <Eigen/QR>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "integrate/trace.hpp"
+#include "noise/noise_domain.hpp"
 
 namespace dfvn {
 
@@ -18,9 +20,22 @@ double iso_residual(const FieldSample<N>& sample, const std::array<double, N - 1
   return worst;
 }
 
+// The noise is defined only where every |F x_j| < kMaxNoiseArgument (noise/noise_domain.hpp). Callers
+// check that traces start inside; a trace that still reaches the edge (an extreme step) sees beyond it
+// a zero field with NaN values: the point stops moving there, and every reprojection update across
+// the edge is rejected (a NaN residual never compares as an improvement). So the noise is never
+// evaluated outside its domain, and the returned points stay finite.
 template <int N>
 FieldSample<N> evaluate_counted(const DfvnField<N>& field, const Vec<N>& x, TraceStats& stats) {
   ++stats.field_evaluations;
+  if (!in_noise_domain(Vec<N>(field.frequency() * x))) [[unlikely]] {
+    ++stats.outside_domain;
+    FieldSample<N> outside;
+    outside.velocity.setZero();
+    outside.value.fill(std::numeric_limits<double>::quiet_NaN());
+    for (Vec<N>& gradient : outside.gradient) gradient.setZero();
+    return outside;
+  }
   return field.evaluate(x);
 }
 

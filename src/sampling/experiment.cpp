@@ -1,5 +1,6 @@
 #include "sampling/experiment.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -9,6 +10,7 @@
 
 #include "core/dimension.hpp"
 #include "core/stopwatch.hpp"
+#include "noise/noise_domain.hpp"
 #include "sampling/jitter.hpp"
 #include "sampling/poisson_disk.hpp"
 
@@ -70,6 +72,14 @@ void SampleConfig::validate() const {
   if (methods.empty()) throw std::invalid_argument("--methods must name at least one method");
   if (protocol == Protocol::paper && grid * kPaperDelta > 1e6) throw std::invalid_argument("--grid is too large");
   cnj.validate();
+  if (std::find(methods.begin(), methods.end(), Method::cnj) != methods.end()) {
+    const double field_frequency = cnj.frequency / lattice().spacing();
+    if (!(field_frequency >= kMinNoiseFrequency && field_frequency <= kMaxNoiseFrequency))
+      throw std::invalid_argument(fmt::format(
+          "--frequency {:g} cycles per lattice spacing with --grid {} is a field frequency of {:g}, outside the "
+          "noise's [2^-50, 2^50]",
+          cnj.frequency, grid, field_frequency));
+  }
   if (!std::isfinite(pds_radius) || pds_radius < 0.0) throw std::invalid_argument("--pds-radius must be a finite number > 0");
   if (pds_candidates < 1) throw std::invalid_argument("--pds-candidates must be at least 1");
   if (!std::isfinite(max_memory_gib) || max_memory_gib < 0.0) throw std::invalid_argument("--max-memory must be >= 0");
