@@ -16,6 +16,7 @@ std::string evaluate_field_csv(const FieldQuery& query, const PointTable& points
     throw std::invalid_argument("point table has dimension " + std::to_string(points.dimension) +
                                 ", query has " + std::to_string(query.dimension));
   check_noise_frequency(query.frequency);
+  check_thread_count(query.threads);
   // Checked here, not in the parallel loop: an exception must not escape an OpenMP region.
   for (std::size_t i = 0; i < points.rows(); ++i)
     for (int j = 0; j < points.dimension; ++j)

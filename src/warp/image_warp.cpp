@@ -17,6 +17,7 @@ void WarpConfig::validate() const {
   if (width < 2 || height < 2 || width > 20000 || height > 20000)
     throw std::invalid_argument(fmt::format("image size must be 2..20000 per side, got {}x{}", width, height));
   if (!std::isfinite(time)) throw std::invalid_argument("warp time must be finite");
+  check_thread_count(threads);
   check_noise_frequency(frequency, "warp frequency");
   // Pixel centres lie in [0, 1] x [0, height / width]; the traces start there.
   const double extent = std::max(1.0, static_cast<double>(height) / width);
