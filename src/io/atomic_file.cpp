@@ -20,7 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string quoted_path(const std::string& path) { return quoted(path, kMaxPathEchoChars); }
+std::string quoted_path(const std::string& path) { return quote_for_message(path, kMaxPathEchoChars); }
 
 [[noreturn]] void throw_cannot_write(const std::string& path, const std::string& why) {
   throw std::runtime_error("cannot write " + quoted_path(path) + ": " + why);
@@ -70,10 +70,15 @@ extern "C" void remove_temporaries_and_die(int signal_number) {
   std::raise(signal_number);
 }
 
+// True when the folder of `path`, its links resolved, is in /proc: /dev/stdout leads to
+// /proc/self/fd/1, and /dev/fd/1 is in /dev/fd, a link to /proc/self/fd.
 bool is_under_proc(const fs::path& path) {
   const fs::path absolute = fs::absolute(path).lexically_normal();
-  auto part = absolute.begin();
-  return part != absolute.end() && ++part != absolute.end() && *part == "proc";
+  std::error_code error;
+  fs::path folder = fs::weakly_canonical(absolute.parent_path(), error);
+  if (error) folder = absolute.parent_path();
+  auto part = folder.begin();
+  return part != folder.end() && ++part != folder.end() && *part == "proc";
 }
 
 }  // namespace
