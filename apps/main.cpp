@@ -46,7 +46,7 @@ CLI::Validator finite_number(double bound, bool or_equal, const std::string& nam
         double value = 0.0;
         const bool ok = CLI::detail::lexical_cast(text, value) && std::isfinite(value) &&
                         (or_equal ? value >= bound : value > bound);
-        return ok ? std::string() : "must be " + wanted + ", got " + dfvn::quoted(text);
+        return ok ? std::string() : "must be " + wanted + ", got " + dfvn::quote_for_message(text);
       },
       name);
 }
@@ -59,7 +59,7 @@ const CLI::Validator kNoiseFrequency(
       if (CLI::detail::lexical_cast(text, value) && value >= dfvn::kMinNoiseFrequency && value <= dfvn::kMaxNoiseFrequency)
         return {};
       return fmt::format("must be a number in [2^-50, 2^50] = [{:g}, {:g}], got {}", dfvn::kMinNoiseFrequency,
-                         dfvn::kMaxNoiseFrequency, dfvn::quoted(text));
+                         dfvn::kMaxNoiseFrequency, dfvn::quote_for_message(text));
     },
     "FREQUENCY");
 
@@ -68,7 +68,7 @@ const CLI::Validator kStepScale(
     [](std::string& text) -> std::string {
       double value = 0.0;
       if (CLI::detail::lexical_cast(text, value) && value > 0.0 && value <= dfvn::CnjOptions::kMaxStepScale) return {};
-      return "must be a number in (0, 2^20] = (0, 1048576], got " + dfvn::quoted(text);
+      return "must be a number in (0, 2^20] = (0, 1048576], got " + dfvn::quote_for_message(text);
     },
     "POSITIVE");
 
@@ -85,7 +85,7 @@ const CLI::Validator kUnsignedInteger(
       std::uint64_t value = 0;
       return read_unsigned(text, value) ? std::string()
                                         : "must be an integer in 0..18446744073709551615 (2^64 - 1), got " +
-                                              dfvn::quoted(text);
+                                              dfvn::quote_for_message(text);
     },
     "UINT64");
 
@@ -95,7 +95,7 @@ const CLI::Validator kThreadCount(
       std::uint64_t value = 0;
       if (read_unsigned(text, value) && value <= static_cast<std::uint64_t>(dfvn::max_thread_count())) return {};
       return fmt::format("must be 0 (all cores) or 1..{} (4 x the {} cores, at most {}), got {}",
-                         dfvn::max_thread_count(), dfvn::core_count(), dfvn::kMaxThreads, dfvn::quoted(text));
+                         dfvn::max_thread_count(), dfvn::core_count(), dfvn::kMaxThreads, dfvn::quote_for_message(text));
     },
     "THREADS");
 
@@ -154,11 +154,11 @@ struct FieldCommand {
         points = dfvn::read_points_csv(std::cin, dimension);
       } else {
         std::ifstream in(input);
-        if (!in) fail("cannot read " + dfvn::quoted(input, dfvn::kMaxPathEchoChars));
+        if (!in) fail("cannot read " + dfvn::quote_for_message(input, dfvn::kMaxPathEchoChars));
         points = dfvn::read_points_csv(in, dimension);
       }
     } catch (const dfvn::InputError& e) {
-      fail((input.empty() ? std::string("standard input") : dfvn::quoted(input, dfvn::kMaxPathEchoChars)) + ", " +
+      fail((input.empty() ? std::string("standard input") : dfvn::quote_for_message(input, dfvn::kMaxPathEchoChars)) + ", " +
            e.what());
     }
     dfvn::FieldQuery query;
@@ -169,7 +169,7 @@ struct FieldCommand {
     try {
       dfvn::write_file_atomically(output, dfvn::evaluate_field_csv(query, points));
     } catch (const std::invalid_argument& e) {
-      fail((input.empty() ? std::string("standard input") : dfvn::quoted(input, dfvn::kMaxPathEchoChars)) + ", " +
+      fail((input.empty() ? std::string("standard input") : dfvn::quote_for_message(input, dfvn::kMaxPathEchoChars)) + ", " +
            e.what());
     }
   }
@@ -181,7 +181,7 @@ void make_output_dir(const std::string& dir) {
   std::error_code error;
   std::filesystem::create_directories(dir, error);
   if (error || !std::filesystem::is_directory(dir))
-    throw std::runtime_error("cannot create directory " + dfvn::quoted(dir, dfvn::kMaxPathEchoChars));
+    throw std::runtime_error("cannot create directory " + dfvn::quote_for_message(dir, dfvn::kMaxPathEchoChars));
   dfvn::check_writable((std::filesystem::path(dir) / "probe").string());
 }
 
@@ -423,7 +423,7 @@ std::string with_safe_echoes(std::string message, std::vector<std::string> args)
   for (const std::string& arg : args) {
     const bool printable = std::all_of(arg.begin(), arg.end(), [](char c) { return c >= 0x20 && c < 0x7F; });
     if (arg.empty() || (printable && arg.size() <= dfvn::kMaxEchoChars)) continue;
-    const std::string safe = dfvn::quoted(arg);
+    const std::string safe = dfvn::quote_for_message(arg);
     for (std::size_t at = message.find(arg); at != std::string::npos; at = message.find(arg, at + safe.size()))
       message.replace(at, arg.size(), safe);
   }
@@ -447,11 +447,11 @@ std::string parse_error_message(CLI::App& app, const CLI::ParseError& error) {
     for (const CLI::App* sub : deepest->get_subcommands([](CLI::App*) { return true; }))
       names += (names.empty() ? "" : " or ") + sub->get_name();
     return fmt::format("'{}' needs a subcommand: {}{}", deepest->get_name(), names,
-                       unexpected.empty() ? std::string() : ", got " + dfvn::quoted(unexpected.front()));
+                       unexpected.empty() ? std::string() : ", got " + dfvn::quote_for_message(unexpected.front()));
   }
   if (dynamic_cast<const CLI::ExtrasError*>(&error) && !unexpected.empty()) {
     std::string list;
-    for (const std::string& arg : unexpected) list += (list.empty() ? "" : " ") + dfvn::quoted(arg);
+    for (const std::string& arg : unexpected) list += (list.empty() ? "" : " ") + dfvn::quote_for_message(arg);
     return fmt::format("unexpected argument{}: {}", unexpected.size() > 1 ? "s" : "", list);
   }
   return error.what();

@@ -33,7 +33,7 @@ std::string escape_bytes(std::string_view text, bool escape_backslash) {
   return out;
 }
 
-std::string quoted(std::string_view text, std::size_t max_chars) {
+std::string quote_for_message(std::string_view text, std::size_t max_chars) {
   std::string body;
   std::size_t used = 0;
   for (; used < text.size(); ++used) {

@@ -17,7 +17,7 @@ std::string escape_bytes(std::string_view text, bool escape_backslash = true);
 // "..." and the full length in bytes, e.g. 'aaaaaaaa...' (1048576 bytes).
 inline constexpr std::size_t kMaxEchoChars = 40;
 inline constexpr std::size_t kMaxPathEchoChars = 160;  // paths are the user's own and worth showing whole
-std::string quoted(std::string_view text, std::size_t max_chars = kMaxEchoChars);
+std::string quote_for_message(std::string_view text, std::size_t max_chars = kMaxEchoChars);
 
 // A size in bytes with the binary unit that shows it: "512 B", "10.7 MiB", "1.50 EiB".
 std::string byte_size(double bytes);

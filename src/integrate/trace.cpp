@@ -11,14 +11,14 @@ namespace dfvn {
 Integrator parse_integrator(std::string_view name) {
   if (name == "euler") return Integrator::euler;
   if (name == "rk4") return Integrator::rk4;
-  throw std::invalid_argument("unknown integrator " + quoted(name) + " (allowed: euler, rk4)");
+  throw std::invalid_argument("unknown integrator " + quote_for_message(name) + " (allowed: euler, rk4)");
 }
 
 Reprojection parse_reprojection(std::string_view name) {
   if (name == "none") return Reprojection::none;
   if (name == "newton") return Reprojection::newton;
   if (name == "gauss-newton") return Reprojection::gauss_newton;
-  throw std::invalid_argument("unknown reprojection " + quoted(name) + " (allowed: none, newton, gauss-newton)");
+  throw std::invalid_argument("unknown reprojection " + quote_for_message(name) + " (allowed: none, newton, gauss-newton)");
 }
 
 std::string_view to_string(Integrator integrator) {

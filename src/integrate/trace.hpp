@@ -69,7 +69,9 @@ class Tracer {
   // Throws std::invalid_argument if the options are invalid.
   Tracer(const DfvnField<N>& field, const TraceOptions& options);
 
-  // Algorithm 1: trace x0 for time t (t may be negative: backwards) in options.steps steps.
+  // Algorithm 1: trace x0 for time t (t may be negative: backwards) in options.steps steps. A trace
+  // that reaches the edge of the noise domain (noise/noise_domain.hpp) stops there, counted in
+  // TraceStats::outside_domain; x0 itself must be inside.
   Vec<N> trace(const Vec<N>& x0, double time, TraceStats* stats = nullptr) const;
 
   // Moves x back onto the iso-contours f(x) = tau with the configured policy, taking no update

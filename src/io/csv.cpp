@@ -114,7 +114,7 @@ PointTable read_points_csv(std::istream& in, int dimension) {
     }
     // The first line may be a header: no field of it a number, quoted or not ("0.1" is a number).
     if (line_number == 1 && non_numeric == dimension) continue;
-    const std::string bad = quoted(fields[first_bad]);
+    const std::string bad = quote_for_message(fields[first_bad]);
     switch (first_problem) {
       case ParseResult::not_finite:
         throw InputError(fmt::format("line {}, column {}: {} is not a finite number (NaN and Inf are not allowed)",

@@ -54,7 +54,7 @@ void write_points_csv(std::ostream& out, const PointSet& points) {
 PointFormat parse_point_format(std::string_view name) {
   if (name == "csv") return PointFormat::csv;
   if (name == "npy") return PointFormat::npy;
-  throw std::invalid_argument("unknown point format " + quoted(name) + " (allowed: csv, npy)");
+  throw std::invalid_argument("unknown point format " + quote_for_message(name) + " (allowed: csv, npy)");
 }
 
 void write_point_file(const std::string& path, const PointSet& points, PointFormat format) {

@@ -29,11 +29,11 @@ std::vector<int> parse_dimension_list(std::string_view text) {
   std::vector<int> dims;
   auto parse_int = [&](std::string_view s) {
     if (s.empty() || s.find_first_not_of("0123456789") != std::string_view::npos)
-      throw std::invalid_argument(fmt::format("--dims: {} is not a list like 3-7 or 3,5,7", quoted(text)));
+      throw std::invalid_argument(fmt::format("--dims: {} is not a list like 3-7 or 3,5,7", quote_for_message(text)));
     int v = 0;
     const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), v);
     if (error != std::errc() || end != s.data() + s.size())
-      throw std::invalid_argument(fmt::format("--dims: {} is not a dimension in 3..7", quoted(s)));
+      throw std::invalid_argument(fmt::format("--dims: {} is not a dimension in 3..7", quote_for_message(s)));
     table1_grid(v);  // range check with the message
     return v;
   };
@@ -46,7 +46,7 @@ std::vector<int> parse_dimension_list(std::string_view text) {
       dims.push_back(parse_int(part));
     } else {
       const int lo = parse_int(part.substr(0, dash)), hi = parse_int(part.substr(dash + 1));
-      if (lo > hi) throw std::invalid_argument(fmt::format("--dims: empty range {}", quoted(part)));
+      if (lo > hi) throw std::invalid_argument(fmt::format("--dims: empty range {}", quote_for_message(part)));
       for (int d = lo; d <= hi; ++d) dims.push_back(d);
     }
     if (comma == std::string_view::npos) break;

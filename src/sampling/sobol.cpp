@@ -15,7 +15,7 @@ namespace dfvn {
 Scramble parse_scramble(std::string_view name) {
   if (name == "owen") return Scramble::owen;
   if (name == "none") return Scramble::none;
-  throw std::invalid_argument("unknown scramble " + quoted(name) + " (allowed: owen, none)");
+  throw std::invalid_argument("unknown scramble " + quote_for_message(name) + " (allowed: owen, none)");
 }
 
 std::string_view to_string(Scramble scramble) { return scramble == Scramble::owen ? "owen" : "none"; }

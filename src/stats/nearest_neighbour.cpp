@@ -20,7 +20,7 @@ std::vector<double> nearest_neighbour_distances_flann(const PointSet& points, in
 KnnBackend parse_knn_backend(std::string_view name) {
   if (name == "nanoflann") return KnnBackend::nanoflann;
   if (name == "flann") return KnnBackend::flann;
-  throw std::invalid_argument("unknown KD-tree backend " + quoted(name) + " (allowed: nanoflann, flann)");
+  throw std::invalid_argument("unknown KD-tree backend " + quote_for_message(name) + " (allowed: nanoflann, flann)");
 }
 
 std::string_view to_string(KnnBackend backend) { return backend == KnnBackend::nanoflann ? "nanoflann" : "flann"; }

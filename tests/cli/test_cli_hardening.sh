@@ -188,6 +188,8 @@ wait "$reader"
 [[ $(wc -l <from-fifo) -eq 2 ]] && ok || bad "the FIFO's reader got $(wc -l <from-fifo) lines"
 "$bin" --dim 3 --grid 4 --methods jitter --quiet --stats /dev/stdout >stdout.csv 2>"$work/err" && ok || bad "/dev/stdout: $(cat "$work/err")"
 [[ $(wc -l <stdout.csv) -eq 2 ]] && ok || bad "/dev/stdout into a file: $(wc -l <stdout.csv) lines"
+lines=$("$bin" --dim 3 --grid 4 --methods jitter --quiet --stats /dev/fd/1 2>"$work/err" | wc -l)
+[[ $lines -eq 2 ]] && ok || bad "/dev/fd/1 into a pipe: $lines lines, $(cat "$work/err")"
 expect_error "directory as --stats" "" --dim 3 --grid 4 --methods jitter --stats "$work/targets"
 expect_message "directory as --stats" "directory"
 expect_no_temporaries "after the output tests" "$work/targets"
