@@ -3,23 +3,27 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <new>
 #include <string>
-
-#include <filesystem>
 #include <unistd.h>
 #include <vector>
 
 #include "core/dimension.hpp"
 #include "field/diagnose.hpp"
+#include "core/message_text.hpp"
+#include "core/parallel.hpp"
 #include "field/evaluate_points.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 #include "io/point_file.hpp"
 #include "reproduce/cnj_study.hpp"
+#include "noise/noise_domain.hpp"
 #include "reproduce/reproduce.hpp"
 #include "sampling/experiment.hpp"
 
@@ -27,8 +31,11 @@ namespace {
 
 constexpr const char* kProgram = "dfvn-sample";
 
+// Every error is one line on stderr: escape_bytes turns any newline or control byte left in the
+// message into a visible escape, so nothing reaches the terminal raw.
 [[noreturn]] void fail(const std::string& message, int code = 1) {
-  std::fprintf(stderr, "%s: error: %s\n", kProgram, message.c_str());
+  const std::string line = dfvn::escape_bytes(message, false);
+  std::fprintf(stderr, "%s: error: %s\n", kProgram, line.c_str());
   std::exit(code);
 }
 
@@ -41,12 +48,58 @@ CLI::Validator finite_number(double bound, bool or_equal, const std::string& nam
         double value = 0.0;
         const bool ok = CLI::detail::lexical_cast(text, value) && std::isfinite(value) &&
                         (or_equal ? value >= bound : value > bound);
-        return ok ? std::string() : "must be " + wanted + ", got '" + text + "'";
+        return ok ? std::string() : "must be " + wanted + ", got " + dfvn::quote_for_message(text);
       },
       name);
 }
-const CLI::Validator kPositiveFinite = finite_number(0.0, false, "POSITIVE");
 const CLI::Validator kNonNegativeFinite = finite_number(0.0, true, "NONNEGATIVE");
+
+// A noise frequency in the supported range (noise/noise_domain.hpp); a subnormal one gave Inf.
+const CLI::Validator kNoiseFrequency(
+    [](std::string& text) -> std::string {
+      double value = 0.0;
+      if (CLI::detail::lexical_cast(text, value) && value >= dfvn::kMinNoiseFrequency && value <= dfvn::kMaxNoiseFrequency)
+        return {};
+      return fmt::format("must be a number in [2^-50, 2^50] = [{:g}, {:g}], got {}", dfvn::kMinNoiseFrequency,
+                         dfvn::kMaxNoiseFrequency, dfvn::quote_for_message(text));
+    },
+    "FREQUENCY");
+
+// CNJ's step scale: (0, 2^20] (sampling/curl_noise_jitter.hpp says why).
+const CLI::Validator kStepScale(
+    [](std::string& text) -> std::string {
+      double value = 0.0;
+      if (CLI::detail::lexical_cast(text, value) && value > 0.0 && value <= dfvn::CnjOptions::kMaxStepScale) return {};
+      return "must be a number in (0, 2^20] = (0, 1048576], got " + dfvn::quote_for_message(text);
+    },
+    "POSITIVE");
+
+// Digits only, read exactly: CLI11 would take "-1" and "18446744073709551616" as 2^64 - 1 and "" as 0.
+bool read_unsigned(const std::string& text, std::uint64_t& value) {
+  const char* end = text.data() + text.size();
+  const auto [ptr, error] = std::from_chars(text.data(), end, value);
+  return !text.empty() && text.find_first_not_of("0123456789") == std::string::npos && error == std::errc() &&
+         ptr == end;
+}
+
+const CLI::Validator kUnsignedInteger(
+    [](std::string& text) -> std::string {
+      std::uint64_t value = 0;
+      return read_unsigned(text, value) ? std::string()
+                                        : "must be an integer in 0..18446744073709551615 (2^64 - 1), got " +
+                                              dfvn::quote_for_message(text);
+    },
+    "UINT64");
+
+// --threads: 0 (all cores) or 1..max_thread_count() (core/parallel.hpp).
+const CLI::Validator kThreadCount(
+    [](std::string& text) -> std::string {
+      std::uint64_t value = 0;
+      if (read_unsigned(text, value) && value <= static_cast<std::uint64_t>(dfvn::max_thread_count())) return {};
+      return fmt::format("must be 0 (all cores) or 1..{} (4 x the {} cores, at most {}), got {}",
+                         dfvn::max_thread_count(), dfvn::core_count(), dfvn::kMaxThreads, dfvn::quote_for_message(text));
+    },
+    "THREADS");
 
 // --dim, checked against the dimensions the library instantiates.
 void add_dimension_option(CLI::App& cmd, int& dimension, const std::string& help) {
@@ -72,10 +125,11 @@ struct CommonOptions {
 
 void add_common_options(CLI::App& app, CommonOptions& common) {
   app.add_option("--seed", common.seed, "Seed of every random choice; same seed, same output")
-      ->capture_default_str();
-  app.add_option("--threads", common.threads, "Worker threads; 0 = all cores (output never depends on it)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(kUnsignedInteger);
+  app.add_option("--threads", common.threads, "Worker threads: 0 = all cores, at most 4 x the cores (output never depends on it)")
+      ->capture_default_str()
+      ->check(kThreadCount);
 }
 
 struct FieldCommand {
@@ -97,9 +151,10 @@ struct FieldCommand {
     add_dimension_option(*cmd, dimension, "Dimension N of the points (2..8)");
     cmd->add_option("--frequency", frequency,
                     "Noise frequency F in cycles per unit length (one cycle = 2 pi / k_eff of the basis):\n"
-                    "f_i(x) = (A/s) n_i(s x) with s = 2 pi F / k_eff")
+                    "f_i(x) = (A/s) n_i(s x) with s = 2 pi F / k_eff; in [2^-50, 2^50], and every |F x_j| must be\n"
+                    "below 2^50")
         ->capture_default_str()
-        ->check(kPositiveFinite);
+        ->check(kNoiseFrequency);
     add_noise_option(*cmd, noise);
     CLI::Option* input_option =
         cmd->add_option("--input", input, "CSV file of points (default: standard input)")->check(CLI::ExistingFile);
@@ -114,7 +169,7 @@ struct FieldCommand {
         ->check(CLI::Range(std::uint64_t{10}, std::uint64_t{100000000}));
     cmd->add_option("--periods", diagnosis.periods, "With --diagnose: the points fill [0, periods / F]^N")
         ->capture_default_str()
-        ->check(kPositiveFinite);
+        ->check(CLI::Range(1e-3, 1e9));
     cmd->add_option("--output", output, "Output CSV file, written whole or not at all ('-' = standard output)")
         ->capture_default_str();
     add_common_options(*cmd, common);
@@ -138,18 +193,24 @@ struct FieldCommand {
         points = dfvn::read_points_csv(std::cin, dimension);
       } else {
         std::ifstream in(input);
-        if (!in) fail("cannot read '" + input + "'");
+        if (!in) fail("cannot read " + dfvn::quote_for_message(input, dfvn::kMaxPathEchoChars));
         points = dfvn::read_points_csv(in, dimension);
       }
     } catch (const dfvn::InputError& e) {
-      fail((input.empty() ? std::string("standard input") : input) + ", " + e.what());
+      fail((input.empty() ? std::string("standard input") : dfvn::quote_for_message(input, dfvn::kMaxPathEchoChars)) + ", " +
+           e.what());
     }
     dfvn::FieldQuery query;
     query.dimension = dimension;
     query.seed = common.seed;
     query.field = {dfvn::parse_noise_basis(noise), frequency};
     query.threads = common.threads;
-    dfvn::write_file_atomically(output, dfvn::evaluate_field_csv(query, points));
+    try {
+      dfvn::write_file_atomically(output, dfvn::evaluate_field_csv(query, points));
+    } catch (const std::invalid_argument& e) {
+      fail((input.empty() ? std::string("standard input") : dfvn::quote_for_message(input, dfvn::kMaxPathEchoChars)) + ", " +
+           e.what());
+    }
   }
 };
 
@@ -158,7 +219,8 @@ struct FieldCommand {
 void make_output_dir(const std::string& dir) {
   std::error_code error;
   std::filesystem::create_directories(dir, error);
-  if (error || !std::filesystem::is_directory(dir)) throw std::runtime_error("cannot create directory '" + dir + "'");
+  if (error || !std::filesystem::is_directory(dir))
+    throw std::runtime_error("cannot create directory " + dfvn::quote_for_message(dir, dfvn::kMaxPathEchoChars));
   dfvn::check_writable((std::filesystem::path(dir) / "probe").string());
 }
 
@@ -226,7 +288,8 @@ struct SampleCommand {
     cmd->add_option("--rdf-bins", config.rdf.bins, "Number of RDF bins")->capture_default_str()->check(CLI::Range(1, 100000));
     cmd->add_option("--rdf-queries", config.rdf.max_queries,
                     "RDF query points: a seeded subset of about this many (0 = all points)")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(kUnsignedInteger);
     cmd->add_option("--points", points_dir, "Write each point set to DIR/<method>.csv or DIR/<method>.npy");
     cmd->add_option("--format", format, "Point file format: csv (header x0..x{N-1}) or npy (float64, (points, N))")
         ->capture_default_str()
@@ -240,13 +303,14 @@ struct SampleCommand {
     cmd->add_option("--steps", config.cnj.trace.steps, "CNJ integration steps M")->capture_default_str()->check(CLI::Range(1, 1 << 20));
     cmd->add_option("--step-scale", config.cnj.step_scale,
                     "CNJ trace time t = C * dbar(N) * lattice spacing, dbar the mean distance to the 3^N-1 "
-                    "lattice neighbours (Section 5.1); RMS |c| = 1, so t is the RMS move")
+                    "lattice neighbours (Section 5.1); RMS |c| = 1, so t is the RMS move; at most 2^20")
         ->capture_default_str()
-        ->check(kPositiveFinite);
+        ->check(kStepScale);
     cmd->add_option("--frequency", config.cnj.frequency,
-                    "CNJ noise frequency in cycles per lattice spacing (one cycle = 2 pi / k_eff of the basis)")
+                    "CNJ noise frequency in cycles per lattice spacing (one cycle = 2 pi / k_eff of the basis); the\n"
+                    "field's, this / spacing, must be in [2^-50, 2^50]")
         ->capture_default_str()
-        ->check(kPositiveFinite);
+        ->check(kNoiseFrequency);
     add_noise_option(*cmd, noise);
     cmd->add_option("--reproject", reproject, "CNJ reprojection after each step: none, newton (Eq. 12), gauss-newton (Eq. 10-11)")
         ->capture_default_str()
@@ -291,6 +355,11 @@ struct SampleCommand {
     config.validate();
 
     // Check every destination before the work starts; each file is then written whole or not at all.
+    std::vector<std::pair<std::string, std::string>> outputs = {{"--stats", stats_path}};
+    if (!rdf_path.empty()) outputs.emplace_back("--rdf", rdf_path);
+    if (!points_dir.empty())
+      for (dfvn::Method m : config.methods) outputs.emplace_back("--points (" + point_file_name(m) + ")", point_file(m));
+    dfvn::check_distinct_outputs(outputs);
     dfvn::check_writable(stats_path);
     if (!rdf_path.empty()) dfvn::check_writable(rdf_path);
     if (!points_dir.empty()) {
@@ -317,9 +386,8 @@ struct SampleCommand {
     dfvn::write_file_atomically(stats_path, stats);
   }
 
-  std::string point_file(dfvn::Method m) const {
-    return (std::filesystem::path(points_dir) / (std::string(dfvn::to_string(m)) + "." + format)).string();
-  }
+  std::string point_file_name(dfvn::Method m) const { return std::string(dfvn::to_string(m)) + "." + format; }
+  std::string point_file(dfvn::Method m) const { return (std::filesystem::path(points_dir) / point_file_name(m)).string(); }
 };
 
 
@@ -334,6 +402,7 @@ struct ReproduceCommand {
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand("reproduce", "Regenerate the paper's tables and figures, ours beside the paper's.");
     cmd->require_subcommand(1);
+    cmd->footer("Subcommands: table1, table2 ('dfvn-sample reproduce table1 --help').");
     CLI::App* t1 = cmd->add_subcommand(
         "table1",
         "Table 1 and Figure 4: CNJ, jittering, Poisson disk and Sobol point sets in 3D-7D under the paper protocol.\n"
@@ -352,9 +421,10 @@ struct ReproduceCommand {
     t2->add_option("--out", out2, "Output directory")->capture_default_str();
     t2->add_option("--width", warp.width, "Image width in pixels")->capture_default_str()->check(CLI::Range(2, 20000));
     t2->add_option("--height", warp.height, "Image height in pixels")->capture_default_str()->check(CLI::Range(2, 20000));
-    t2->add_option("--frequency", warp.frequency, "Noise frequency in cycles across the image width (RMS |c| = 1)")
+    t2->add_option("--frequency", warp.frequency,
+                   "Noise frequency in cycles across the image width (RMS |c| = 1), in [2^-50, 2^50]")
         ->capture_default_str()
-        ->check(kPositiveFinite);
+        ->check(kNoiseFrequency);
     t2->add_flag("--quiet", quiet, "No progress on stderr");
     add_common_options(*t2, common2);
     t2->callback([this] { run_table2(); });
@@ -417,6 +487,47 @@ struct ReproduceCommand {
 
 const std::vector<std::string> kSubcommands = {"sample", "field", "reproduce"};
 
+// CLI11 echoes arguments verbatim in its messages: shorten and escape each one that is long or holds
+// bytes that are not printable ASCII (core/message_text.hpp).
+std::string with_safe_echoes(std::string message, std::vector<std::string> args) {
+  std::sort(args.begin(), args.end(), [](const std::string& a, const std::string& b) { return a.size() > b.size(); });
+  for (const std::string& arg : args) {
+    const bool printable = std::all_of(arg.begin(), arg.end(), [](char c) { return c >= 0x20 && c < 0x7F; });
+    if (arg.empty() || (printable && arg.size() <= dfvn::kMaxEchoChars)) continue;
+    const std::string safe = dfvn::quote_for_message(arg);
+    for (std::size_t at = message.find(arg); at != std::string::npos; at = message.find(arg, at + safe.size()))
+      message.replace(at, arg.size(), safe);
+  }
+  return message;
+}
+
+// The deepest subcommand on the command line, e.g. 'reproduce' in "reproduce table3".
+CLI::App* deepest_subcommand(CLI::App& app) {
+  CLI::App* deepest = &app;
+  while (!deepest->get_subcommands().empty()) deepest = deepest->get_subcommands().front();
+  return deepest;
+}
+
+// A parse error as the tool's own line: unexpected arguments in the order given, and a missing
+// subcommand with the names it could have been.
+std::string parse_error_message(CLI::App& app, const CLI::ParseError& error) {
+  CLI::App* deepest = deepest_subcommand(app);
+  const std::vector<std::string> unexpected = app.remaining(true);
+  if (deepest->get_require_subcommand_min() > 0 && deepest->get_subcommands().empty()) {
+    std::string names;
+    for (const CLI::App* sub : deepest->get_subcommands([](CLI::App*) { return true; }))
+      names += (names.empty() ? "" : " or ") + sub->get_name();
+    return fmt::format("'{}' needs a subcommand: {}{}", deepest->get_name(), names,
+                       unexpected.empty() ? std::string() : ", got " + dfvn::quote_for_message(unexpected.front()));
+  }
+  if (dynamic_cast<const CLI::ExtrasError*>(&error) && !unexpected.empty()) {
+    std::string list;
+    for (const std::string& arg : unexpected) list += (list.empty() ? "" : " ") + dfvn::quote_for_message(arg);
+    return fmt::format("unexpected argument{}: {}", unexpected.size() > 1 ? "s" : "", list);
+  }
+  return error.what();
+}
+
 // 'sample' is the default: insert it when the first argument names no subcommand.
 std::vector<std::string> with_default_subcommand(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
@@ -434,6 +545,7 @@ int main(int argc, char** argv) {
                "jittering of lattices, and the point-set statistics of 'Improving Curl Noise' (SIGGRAPH Asia 2025).",
                kProgram};
   app.set_version_flag("--version", std::string(kProgram) + " " + DFVN_VERSION);
+  app.set_help_all_flag("--help-all", "Print the help of every subcommand and exit");
   app.require_subcommand(1);
   app.footer("Subcommands: sample (default; 'dfvn-sample sample --help'), field, reproduce table1|table2|cnj-study\n"
              "('dfvn-sample field --help', 'dfvn-sample reproduce table1 --help').");
@@ -444,6 +556,8 @@ int main(int argc, char** argv) {
   ReproduceCommand reproduce;
   reproduce.add_to(app);
 
+  dfvn::remove_temporaries_on_signals();
+  const std::vector<std::string> given(argv + 1, argv + argc);
   try {
     std::vector<std::string> args = with_default_subcommand(argc, argv);
     app.parse(args);
@@ -454,7 +568,9 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    fail(std::string(e.what()) + " (run with --help for the options)", 2);
+    fail(with_safe_echoes(parse_error_message(app, e), given) + " (run with --help for the options)", 2);
+  } catch (const std::bad_alloc&) {  // the library names what it allocates where it can; this is the rest
+    fail("out of memory; try a smaller problem");
   } catch (const std::exception& e) {
     fail(e.what());
   }

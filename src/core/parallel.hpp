@@ -4,9 +4,32 @@
 
 #include <omp.h>
 
+#include <algorithm>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
 namespace dfvn {
 
-// 0 means "all available cores".
-inline int resolve_threads(int requested) { return requested > 0 ? requested : omp_get_max_threads(); }
+inline int core_count() { return std::max(1, omp_get_num_procs()); }
+
+// More threads than cores only add overhead, and libgomp crashes (stack overflow) or fails to
+// allocate at about 10^5 threads. So at most 4 x the cores, and never more than kMaxThreads.
+inline constexpr int kMaxThreads = 1024;
+inline int max_thread_count() { return std::min(kMaxThreads, 4 * core_count()); }
+
+// Throws std::invalid_argument unless `requested` is 0 (all cores) or 1..max_thread_count().
+inline void check_thread_count(int requested) {
+  if (requested < 0 || requested > max_thread_count())
+    throw std::invalid_argument(fmt::format("thread count must be 0 (all cores) or 1..{} (4 x the {} cores, at most {}), "
+                                            "got {}",
+                                            max_thread_count(), core_count(), kMaxThreads, requested));
+}
+
+// 0 means "all available cores" (OMP_NUM_THREADS if set). Configurations call check_thread_count
+// first; the clamp keeps an environment variable within the same bound.
+inline int resolve_threads(int requested) {
+  return std::clamp(requested > 0 ? requested : omp_get_max_threads(), 1, max_thread_count());
+}
 
 }  // namespace dfvn

@@ -1,5 +1,6 @@
 #include "field/dfvn_field.hpp"
 
+#include <cassert>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -7,13 +8,11 @@
 #include <fmt/format.h>
 
 #include "field/cross_product.hpp"
+#include "noise/noise_domain.hpp"
 
 namespace dfvn {
 
-void FieldOptions::validate() const {
-  if (!std::isfinite(frequency) || !(frequency > 0.0))
-    throw std::invalid_argument(fmt::format("frequency must be finite and positive, got {}", frequency));
-}
+void FieldOptions::validate() const { check_noise_frequency(frequency); }
 
 template <int N>
 DfvnField<N>::DfvnField(std::uint64_t seed, const FieldOptions& options)
@@ -22,8 +21,19 @@ DfvnField<N>::DfvnField(std::uint64_t seed, const FieldOptions& options)
       seed_(seed),
       scale_(2.0 * std::numbers::pi * options.frequency / noise_->wavenumber()),
       amplitude_(noise_->amplitude()) {
-  if (!std::isfinite(scale_) || !(scale_ > 0.0))
-    throw std::invalid_argument(fmt::format("frequency {} is outside the range the noise supports", options.frequency));
+  // The noise domain bounds F x; each basis is safe for its own scale s = 2 pi F / k_eff there
+  // (noise/noise_domain.hpp), which the checks of the tests assert.
+  assert(scale_ > 0.0 && scale_ <= 2.0 * options.frequency);
+}
+
+template <int N>
+bool DfvnField<N>::in_domain(const Vec<N>& x) const {
+  return in_noise_domain(Vec<N>(options_.frequency * x));
+}
+
+template <int N>
+void DfvnField<N>::check_in_domain(const Vec<N>& x, std::string_view what) const {
+  for (int j = 0; j < N; ++j) check_noise_argument(x[j], options_.frequency, fmt::format("{}, column {}", what, j + 1));
 }
 
 template <int N>

@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <string_view>
 
 #include "core/dimension.hpp"
 #include "noise/noise_functions.hpp"
@@ -37,10 +38,15 @@ class DfvnField {
  public:
   static constexpr int kFunctions = N - 1;
 
-  // Throws std::invalid_argument for a bad frequency or basis.
+  // Throws std::invalid_argument for a bad basis or a frequency outside [kMinNoiseFrequency,
+  // kMaxNoiseFrequency] (noise/noise_domain.hpp).
   explicit DfvnField(std::uint64_t seed, const FieldOptions& options = {});
 
+  // evaluate(x) needs x in the noise domain (every |F x_j| < 2^50); callers check their points before
+  // evaluating, with in_domain or check_in_domain (which throws std::invalid_argument naming `what`).
   FieldSample<N> evaluate(const Vec<N>& x) const;
+  bool in_domain(const Vec<N>& x) const;
+  void check_in_domain(const Vec<N>& x, std::string_view what) const;
   Vec<N> velocity(const Vec<N>& x) const { return evaluate(x).velocity; }
 
   const FieldOptions& options() const { return options_; }

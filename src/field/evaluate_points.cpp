@@ -3,8 +3,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "core/parallel.hpp"
 #include "field/dfvn_field.hpp"
+#include "noise/noise_domain.hpp"
 
 namespace dfvn {
 
@@ -12,8 +15,14 @@ std::string evaluate_field_csv(const FieldQuery& query, const PointTable& points
   if (points.dimension != query.dimension)
     throw std::invalid_argument("point table has dimension " + std::to_string(points.dimension) +
                                 ", query has " + std::to_string(query.dimension));
+  check_thread_count(query.threads);
   return dispatch_dimension(query.dimension, [&]<int N>() {
     const DfvnField<N> field(query.seed, query.field);
+    // Checked here, not in the parallel loop: an exception must not escape an OpenMP region.
+    for (std::size_t i = 0; i < points.rows(); ++i) {
+      const Vec<N> x = Eigen::Map<const Vec<N>>(points.row(i));
+      if (!field.in_domain(x)) field.check_in_domain(x, fmt::format("point {}", i + 1));
+    }
     const auto rows = static_cast<std::int64_t>(points.rows());
     // Rows are formatted in fixed blocks and joined in order, so the output is the same for any
     // number of threads.

@@ -18,7 +18,8 @@ struct FieldQuery {
 
 // CSV with header x0..x{N-1},c0..c{N-1},f1..f{N-1} and one row per input point: the point, the
 // field vector c(x) and the N-1 noise values f_i(x), each with 17 significant digits. The bytes do
-// not depend on the thread count.
+// not depend on the thread count. Throws std::invalid_argument, naming the point and column, when
+// frequency * coordinate is outside the noise domain (noise/noise_domain.hpp).
 std::string evaluate_field_csv(const FieldQuery& query, const PointTable& points);
 
 }  // namespace dfvn

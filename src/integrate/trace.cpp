@@ -1,6 +1,7 @@
 #include "integrate/trace.hpp"
 
-#include <Eigen/QR>
+#include "core/message_text.hpp"
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -10,15 +11,14 @@ namespace dfvn {
 Integrator parse_integrator(std::string_view name) {
   if (name == "euler") return Integrator::euler;
   if (name == "rk4") return Integrator::rk4;
-  throw std::invalid_argument("unknown integrator '" + std::string(name) + "' (allowed: euler, rk4)");
+  throw std::invalid_argument("unknown integrator " + quote_for_message(name) + " (allowed: euler, rk4)");
 }
 
 Reprojection parse_reprojection(std::string_view name) {
   if (name == "none") return Reprojection::none;
   if (name == "newton") return Reprojection::newton;
   if (name == "gauss-newton") return Reprojection::gauss_newton;
-  throw std::invalid_argument("unknown reprojection '" + std::string(name) +
-                              "' (allowed: none, newton, gauss-newton)");
+  throw std::invalid_argument("unknown reprojection " + quote_for_message(name) + " (allowed: none, newton, gauss-newton)");
 }
 
 std::string_view to_string(Integrator integrator) {
@@ -45,193 +45,5 @@ void TraceOptions::validate() const {
     throw std::invalid_argument("maximum condition number must be finite and > 1");
   if (!(max_update_ratio > 0.0)) throw std::invalid_argument("maximum update ratio must be > 0");
 }
-
-template <int N>
-double iso_residual(const FieldSample<N>& sample, const std::array<double, N - 1>& tau) {
-  double worst = 0.0;
-  for (int i = 0; i < N - 1; ++i) worst = std::max(worst, std::abs(sample.value[i] - tau[i]));
-  return worst;
-}
-
-namespace {
-
-template <int N>
-FieldSample<N> evaluate_counted(const DfvnField<N>& field, const Vec<N>& x, TraceStats& stats) {
-  ++stats.field_evaluations;
-  return field.evaluate(x);
-}
-
-}  // namespace
-
-template <int N>
-template <Reprojection R>
-FieldSample<N> Tracer<N>::reproject_with(const Tracer& self, Vec<N>& x, const std::array<double, N - 1>& tau,
-                                         double max_update, TraceStats& stats) {
-  const TraceOptions& o = self.options_;
-  FieldSample<N> sample = evaluate_counted(self.field_, x, stats);
-  double residual_now = iso_residual<N>(sample, tau);
-  // Takes x + step unless it is too long or raises the residual; false when it was not taken.
-  auto try_update = [&](const Vec<N>& step) {
-    if (!step.allFinite() || !(step.norm() <= max_update)) {
-      ++stats.skipped_updates;
-      return false;
-    }
-    const Vec<N> candidate = x + step;
-    FieldSample<N> moved = evaluate_counted(self.field_, candidate, stats);
-    const double residual_moved = iso_residual<N>(moved, tau);
-    if (!(residual_moved <= residual_now)) {
-      ++stats.skipped_updates;
-      return false;
-    }
-    x = candidate;
-    sample = std::move(moved);
-    residual_now = residual_moved;
-    ++stats.reprojection_updates;
-    return true;
-  };
-  if constexpr (R == Reprojection::gauss_newton) {
-    using JacobianT = Eigen::Matrix<double, N, N - 1>;  // J^T: column i is grad f_i
-    for (int iteration = 0; iteration < o.reproject_iterations; ++iteration) {
-      if (residual_now <= o.residual_tolerance) break;
-      JacobianT jacobian_t;
-      Eigen::Matrix<double, N - 1, 1> residual;
-      for (int i = 0; i < N - 1; ++i) {
-        jacobian_t.col(i) = sample.gradient[i];
-        residual[i] = tau[i] - sample.value[i];
-      }
-      // Eq. (10)-(11): minimum-norm solution of J v = tau - f(x). With the pivoted QR
-      // J^T P = Q [R1; 0], the minimum-norm v lies in range(J^T) = range(Q1): v = Q1 w with
-      // R1^T w = P^T (tau - f(x)).
-      const Eigen::ColPivHouseholderQR<JacobianT> qr(jacobian_t);
-      const auto r = qr.matrixQR().template topLeftCorner<N - 1, N - 1>().template triangularView<Eigen::Upper>();
-      const double largest = std::abs(qr.matrixQR()(0, 0));
-      const double smallest = std::abs(qr.matrixQR()(N - 2, N - 2));
-      if (!(smallest > 0.0) || largest > o.max_condition * smallest) {
-        ++stats.skipped_updates;  // rank deficient or ill-conditioned: keep x as it is
-        break;
-      }
-      Eigen::Matrix<double, N - 1, 1> w = qr.colsPermutation().transpose() * residual;
-      r.transpose().solveInPlace(w);
-      Vec<N> step = Vec<N>::Zero();
-      step.template head<N - 1>() = w;
-      step = qr.householderQ() * step;
-      if (!try_update(step)) break;
-    }
-  } else if constexpr (R == Reprojection::newton) {
-    const double min_gradient2 = 1.0 / (o.max_condition * o.max_condition);
-    for (int iteration = 0; iteration < o.reproject_iterations; ++iteration) {
-      if (residual_now <= o.residual_tolerance) break;
-      // Eq. (12), one function at a time, each with a fresh evaluation at the moved point. A projection
-      // onto contour i may raise another function's residual (the sweep as a whole converges), so
-      // each projection must lower its own |f_i - tau_i|, besides the length bound.
-      for (int i = 0; i < N - 1; ++i) {
-        const Vec<N>& gradient = sample.gradient[i];
-        const double gradient2 = gradient.squaredNorm();
-        const double error = sample.value[i] - tau[i];
-        if (error == 0.0) continue;
-        const Vec<N> step = -gradient * (error / gradient2);
-        if (!(gradient2 > min_gradient2) || !step.allFinite() || !(step.norm() <= max_update)) {
-          ++stats.skipped_updates;
-          continue;
-        }
-        const Vec<N> candidate = x + step;
-        FieldSample<N> moved = evaluate_counted(self.field_, candidate, stats);
-        if (!(std::abs(moved.value[i] - tau[i]) <= std::abs(error))) {
-          ++stats.skipped_updates;
-          continue;
-        }
-        x = candidate;
-        sample = std::move(moved);
-        ++stats.reprojection_updates;
-      }
-      residual_now = iso_residual<N>(sample, tau);
-    }
-  }
-  return sample;
-}
-
-template <int N>
-template <Integrator I, Reprojection R>
-Vec<N> Tracer<N>::trace_with(const Tracer& self, const Vec<N>& x0, double time, TraceStats& stats) {
-  const int steps = self.options_.steps;
-  const double h = time / steps;  // delta in Algorithm 1
-  Vec<N> x = x0;
-  // The evaluation at x0 gives both the iso-values tau = f(x0) and the first velocity.
-  FieldSample<N> current = evaluate_counted(self.field_, x, stats);
-  const std::array<double, N - 1> tau = current.value;
-  for (int k = 0; k < steps; ++k) {
-    const Vec<N> before_step = x;
-    if constexpr (I == Integrator::euler) {
-      x += h * current.velocity;  // Eq. (9)
-    } else {
-      const Vec<N>& k1 = current.velocity;
-      const Vec<N> k2 = evaluate_counted(self.field_, Vec<N>(x + 0.5 * h * k1), stats).velocity;
-      const Vec<N> k3 = evaluate_counted(self.field_, Vec<N>(x + 0.5 * h * k2), stats).velocity;
-      const Vec<N> k4 = evaluate_counted(self.field_, Vec<N>(x + h * k3), stats).velocity;
-      x += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-    }
-    const bool last = (k + 1 == steps);
-    if constexpr (R == Reprojection::none) {
-      if (!last) current = evaluate_counted(self.field_, x, stats);
-    } else {
-      // The reprojection ends with an evaluation at the projected point: it is the next k1.
-      const double max_update = self.options_.max_update_ratio * (x - before_step).norm();
-      current = reproject_with<R>(self, x, tau, max_update, stats);
-    }
-  }
-  return x;
-}
-
-template <int N>
-Tracer<N>::Tracer(const DfvnField<N>& field, const TraceOptions& options)
-    : field_(field), options_(options) {
-  options_.validate();
-  auto select = [&]<Integrator I>() -> TraceFunction {
-    switch (options_.reprojection) {
-      case Reprojection::none: return &trace_with<I, Reprojection::none>;
-      case Reprojection::newton: return &trace_with<I, Reprojection::newton>;
-      case Reprojection::gauss_newton: return &trace_with<I, Reprojection::gauss_newton>;
-    }
-    throw std::invalid_argument("unknown reprojection policy");
-  };
-  trace_ = options_.integrator == Integrator::euler ? select.template operator()<Integrator::euler>()
-                                                    : select.template operator()<Integrator::rk4>();
-  switch (options_.reprojection) {
-    case Reprojection::none: reproject_ = &reproject_with<Reprojection::none>; break;
-    case Reprojection::newton: reproject_ = &reproject_with<Reprojection::newton>; break;
-    case Reprojection::gauss_newton: reproject_ = &reproject_with<Reprojection::gauss_newton>; break;
-  }
-}
-
-template <int N>
-Vec<N> Tracer<N>::trace(const Vec<N>& x0, double time, TraceStats* stats) const {
-  TraceStats local;
-  const Vec<N> x = trace_(*this, x0, time, local);
-  if (stats) *stats += local;
-  return x;
-}
-
-template <int N>
-FieldSample<N> Tracer<N>::reproject(Vec<N>& x, const std::array<double, N - 1>& tau, TraceStats* stats,
-                                    double max_update) const {
-  TraceStats local;
-  FieldSample<N> sample = reproject_(*this, x, tau, max_update, local);
-  if (stats) *stats += local;
-  return sample;
-}
-
-#define DFVN_INSTANTIATE_TRACER(N) \
-  template class Tracer<N>;        \
-  template double iso_residual<N>(const FieldSample<N>&, const std::array<double, N - 1>&);
-
-DFVN_INSTANTIATE_TRACER(2)
-DFVN_INSTANTIATE_TRACER(3)
-DFVN_INSTANTIATE_TRACER(4)
-DFVN_INSTANTIATE_TRACER(5)
-DFVN_INSTANTIATE_TRACER(6)
-DFVN_INSTANTIATE_TRACER(7)
-DFVN_INSTANTIATE_TRACER(8)
-
-#undef DFVN_INSTANTIATE_TRACER
 
 }  // namespace dfvn

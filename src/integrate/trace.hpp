@@ -49,11 +49,14 @@ struct TraceStats {
   // Updates not taken: rank-deficient or ill-conditioned Jacobian, non-finite, longer than
   // max_update_ratio x step, or raising the residual.
   std::int64_t skipped_updates = 0;
+  // Evaluations beyond the edge of the noise domain, where a trace stops (noise/noise_domain.hpp).
+  std::int64_t outside_domain = 0;
 
   TraceStats& operator+=(const TraceStats& other) {
     field_evaluations += other.field_evaluations;
     reprojection_updates += other.reprojection_updates;
     skipped_updates += other.skipped_updates;
+    outside_domain += other.outside_domain;
     return *this;
   }
 };
@@ -66,7 +69,9 @@ class Tracer {
   // Throws std::invalid_argument if the options are invalid.
   Tracer(const DfvnField<N>& field, const TraceOptions& options);
 
-  // Algorithm 1: trace x0 for time t (t may be negative: backwards) in options.steps steps.
+  // Algorithm 1: trace x0 for time t (t may be negative: backwards) in options.steps steps. A trace
+  // that reaches the edge of the noise domain (noise/noise_domain.hpp) stops there, counted in
+  // TraceStats::outside_domain; x0 itself must be inside.
   Vec<N> trace(const Vec<N>& x0, double time, TraceStats* stats = nullptr) const;
 
   // Moves x back onto the iso-contours f(x) = tau with the configured policy, taking no update

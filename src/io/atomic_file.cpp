@@ -1,44 +1,151 @@
 #include "io/atomic_file.hpp"
 
+#include <atomic>
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <stdexcept>
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include "core/message_text.hpp"
 
 namespace dfvn {
 
 namespace {
-std::string temporary_name(const std::string& path) {
-  return path + ".tmp." + std::to_string(::getpid());
+
+namespace fs = std::filesystem;
+
+std::string quoted_path(const std::string& path) { return quote_for_message(path, kMaxPathEchoChars); }
+
+[[noreturn]] void throw_cannot_write(const std::string& path, const std::string& why) {
+  throw std::runtime_error("cannot write " + quoted_path(path) + ": " + why);
 }
+
+std::string temporary_name(const std::string& path) { return path + ".tmp." + std::to_string(::getpid()); }
+
+// ---- The registry of live temporaries, read by the signal handler ----
+// Fixed storage and lock-free atomics only: a handler may not allocate or lock. A slot is free (0),
+// being filled (1) or holds a path to remove (2).
+constexpr int kTemporarySlots = 64;
+constexpr std::size_t kMaxTemporaryPath = 4096;
+struct TemporarySlot {
+  std::atomic<int> state{0};
+  char path[kMaxTemporaryPath];
+};
+TemporarySlot g_temporaries[kTemporarySlots];
+static_assert(std::atomic<int>::is_always_lock_free);
+
+// Returns the slot, or -1 when the path is too long or every slot is taken (then only the
+// destructor removes the temporary).
+int register_temporary(const std::string& path) {
+  if (path.size() >= kMaxTemporaryPath) return -1;
+  for (int i = 0; i < kTemporarySlots; ++i) {
+    int expected = 0;
+    if (g_temporaries[i].state.compare_exchange_strong(expected, 1)) {
+      std::memcpy(g_temporaries[i].path, path.c_str(), path.size() + 1);
+      g_temporaries[i].state.store(2);
+      return i;
+    }
+  }
+  return -1;
+}
+
+void unregister_temporary(int slot) {
+  if (slot >= 0) g_temporaries[slot].state.store(0);
+}
+
+void remove_registered_temporaries() {
+  for (TemporarySlot& slot : g_temporaries)
+    if (slot.state.load() == 2) ::unlink(slot.path);  // unlink is async-signal-safe
+}
+
+extern "C" void remove_temporaries_and_die(int signal_number) {
+  remove_registered_temporaries();
+  std::signal(signal_number, SIG_DFL);
+  std::raise(signal_number);
+}
+
+// True when the folder of `path`, its links resolved, is in /proc: /dev/stdout leads to
+// /proc/self/fd/1, and /dev/fd/1 is in /dev/fd, a link to /proc/self/fd.
+bool is_under_proc(const fs::path& path) {
+  const fs::path absolute = fs::absolute(path).lexically_normal();
+  std::error_code error;
+  fs::path folder = fs::weakly_canonical(absolute.parent_path(), error);
+  if (error) folder = absolute.parent_path();
+  auto part = folder.begin();
+  return part != folder.end() && ++part != folder.end() && *part == "proc";
+}
+
 }  // namespace
 
-AtomicOutput::AtomicOutput(std::string path) : path_(std::move(path)) {
-  if (path_ == "-") {
-    to_stdout_ = true;
-    return;
+OutputTarget resolve_output_target(const std::string& path) {
+  if (path == "-") return {path, OutputKind::standard_output};
+  if (path.empty()) throw std::runtime_error("cannot write '': the path is empty");
+  fs::path current = path;
+  // The kernel allows 40 links in a chain (ELOOP); so do we.
+  for (int links = 0; links <= 40; ++links) {
+    // /proc/self/fd/N and the like name open files, not places: write through the path as given.
+    if (is_under_proc(current)) return {path, OutputKind::write_through};
+    struct stat status {};
+    if (::lstat(current.c_str(), &status) != 0) {
+      if (errno == ENOENT) return {current.string(), OutputKind::replace};
+      throw_cannot_write(path, std::strerror(errno));
+    }
+    if (S_ISLNK(status.st_mode)) {
+      std::error_code error;
+      fs::path target = fs::read_symlink(current, error);
+      if (error) throw_cannot_write(path, error.message());
+      current = target.is_absolute() ? target : current.parent_path() / target;
+      continue;
+    }
+    if (S_ISDIR(status.st_mode)) throw_cannot_write(path, "it is a directory");
+    if (S_ISREG(status.st_mode)) return {current.string(), OutputKind::replace};
+    return {current.string(), OutputKind::write_through};
   }
-  temporary_ = temporary_name(path_);
-  file_.open(temporary_, std::ios::binary | std::ios::trunc);
-  if (!file_)
-    throw std::runtime_error("cannot write '" + path_ + "': " + std::strerror(errno));
+  throw_cannot_write(path, "too many levels of symbolic links");
+}
+
+AtomicOutput::AtomicOutput(std::string path) : path_(std::move(path)), target_(resolve_output_target(path_)) {
+  switch (target_.kind) {
+    case OutputKind::standard_output:
+      return;
+    case OutputKind::write_through:
+      // Appending leaves devices and FIFOs as they are, and adds after what the shell's redirection
+      // already holds when /dev/stdout leads to a file.
+      file_.open(target_.path, std::ios::binary | std::ios::app);
+      if (!file_) throw_cannot_write(path_, std::strerror(errno));
+      return;
+    case OutputKind::replace:
+      temporary_ = temporary_name(target_.path);
+      temporary_slot_ = register_temporary(temporary_);  // before it exists: a signal may come at any time
+      file_.open(temporary_, std::ios::binary | std::ios::trunc);
+      if (!file_) {
+        const int error = errno;
+        unregister_temporary(temporary_slot_);
+        throw_cannot_write(path_, std::strerror(error));
+      }
+      return;
+  }
 }
 
 AtomicOutput::~AtomicOutput() {
-  if (!to_stdout_ && !committed_) {
+  if (target_.kind == OutputKind::replace && !committed_) {
     file_.close();
     std::error_code ignored;
-    std::filesystem::remove(temporary_, ignored);
+    fs::remove(temporary_, ignored);
+    unregister_temporary(temporary_slot_);
   }
 }
 
-std::ostream& AtomicOutput::stream() { return to_stdout_ ? std::cout : file_; }
+std::ostream& AtomicOutput::stream() { return target_.kind == OutputKind::standard_output ? std::cout : file_; }
 
 void AtomicOutput::commit() {
-  if (to_stdout_) {
+  if (target_.kind == OutputKind::standard_output) {
     std::cout.flush();
     if (!std::cout) throw std::runtime_error("cannot write to standard output");
     committed_ = true;
@@ -47,10 +154,19 @@ void AtomicOutput::commit() {
   file_.flush();
   const bool good = static_cast<bool>(file_);
   file_.close();
-  if (!good || file_.fail()) throw std::runtime_error("cannot write '" + path_ + "' (disk full?)");
-  if (std::rename(temporary_.c_str(), path_.c_str()) != 0)
-    throw std::runtime_error("cannot rename '" + temporary_ + "' to '" + path_ + "': " + std::strerror(errno));
+  if (!good || file_.fail()) throw_cannot_write(path_, "write error (disk full?)");
+  if (target_.kind == OutputKind::write_through) {
+    committed_ = true;
+    return;
+  }
+  // A replaced file keeps its permission bits.
+  struct stat existing {};
+  if (::stat(target_.path.c_str(), &existing) == 0) ::chmod(temporary_.c_str(), existing.st_mode & 07777);
+  if (std::rename(temporary_.c_str(), target_.path.c_str()) != 0)
+    throw std::runtime_error("cannot rename " + quoted_path(temporary_) + " to " + quoted_path(target_.path) + ": " +
+                             std::strerror(errno));
   committed_ = true;
+  unregister_temporary(temporary_slot_);
 }
 
 void write_file_atomically(const std::string& path, const std::string& text) {
@@ -60,13 +176,63 @@ void write_file_atomically(const std::string& path, const std::string& text) {
 }
 
 void check_writable(const std::string& path) {
-  if (path == "-") return;
-  if (std::filesystem::is_directory(path)) throw std::runtime_error("cannot write '" + path + "': it is a directory");
-  const std::string probe = temporary_name(path);
-  std::FILE* f = std::fopen(probe.c_str(), "wb");
-  if (!f) throw std::runtime_error("cannot write '" + path + "': " + std::strerror(errno));
-  std::fclose(f);
-  std::remove(probe.c_str());
+  const OutputTarget target = resolve_output_target(path);
+  switch (target.kind) {
+    case OutputKind::standard_output:
+      return;
+    case OutputKind::write_through:
+      // Not opened: opening a FIFO for writing waits for a reader.
+      if (::access(target.path.c_str(), W_OK) != 0) throw_cannot_write(path, std::strerror(errno));
+      return;
+    case OutputKind::replace: {
+      const std::string probe = temporary_name(target.path);
+      const int slot = register_temporary(probe);
+      std::FILE* f = std::fopen(probe.c_str(), "wb");
+      const int error = errno;
+      if (f) {
+        std::fclose(f);
+        std::remove(probe.c_str());
+      }
+      unregister_temporary(slot);
+      if (!f) throw_cannot_write(path, std::strerror(error));
+      return;
+    }
+  }
+}
+
+void check_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs) {
+  // An existing file is known by its device and inode (so hard links match too), a new one by its
+  // canonical path; outputs written through get no identity and never clash.
+  std::vector<std::string> identities;
+  for (const auto& [option, path] : outputs) {
+    const OutputTarget target = resolve_output_target(path);
+    struct stat status {};
+    std::error_code error;
+    if (target.kind != OutputKind::replace)
+      identities.emplace_back();
+    else if (::stat(target.path.c_str(), &status) == 0)
+      identities.push_back(std::to_string(status.st_dev) + ":" + std::to_string(status.st_ino));
+    else
+      identities.push_back(fs::weakly_canonical(fs::absolute(target.path), error).string());
+  }
+  for (std::size_t i = 0; i < outputs.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (!identities[i].empty() && identities[i] == identities[j])
+        throw std::invalid_argument(outputs[j].first + " and " + outputs[i].first + " would write the same file " +
+                                    quoted_path(outputs[i].second) + "; give them different paths");
+}
+
+void remove_temporaries_on_signals() {
+  struct sigaction action {};
+  action.sa_handler = remove_temporaries_and_die;
+  sigemptyset(&action.sa_mask);
+  for (const int signal_number : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) {
+    struct sigaction previous {};
+    if (::sigaction(signal_number, nullptr, &previous) == 0 && previous.sa_handler == SIG_IGN) continue;
+    ::sigaction(signal_number, &action, nullptr);
+  }
+  // std::exit skips destructors of objects on the stack; their temporaries go too.
+  std::atexit(remove_registered_temporaries);
 }
 
 }  // namespace dfvn

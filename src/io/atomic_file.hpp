@@ -1,19 +1,43 @@
-// Output files that appear whole or not at all: written to a temporary name beside the target and
-// renamed into place on commit(). "-" means standard output.
+// Output files that appear whole or not at all, without ever destroying what the path leads to.
+//
+// Where a path leads decides how it is written (resolve_output_target):
+//  - "-": standard output;
+//  - a regular file, or nothing yet: a temporary beside it (<name>.tmp.<pid>), renamed over it on
+//    commit(), so the file is replaced whole or not at all (keeping its permission bits);
+//  - a symbolic link (or a chain of them): its final target, written as above; the link stays;
+//  - anything else (a character device such as /dev/null or a terminal, a FIFO, a socket), and any
+//    path through /proc (/dev/stdout, /dev/fd/N name already open files): written through in place.
+//    Such a target cannot be replaced: renaming over /dev/null replaced the machine's /dev/null.
+// A temporary is removed when its AtomicOutput is destroyed uncommitted (any error path) and, after
+// remove_temporaries_on_signals(), when the process is interrupted (SIGINT, SIGTERM, SIGHUP,
+// SIGPIPE), which then dies of that signal as usual (shell status 128 + signal: 130, 143).
 #pragma once
 
 #include <fstream>
 #include <ostream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace dfvn {
 
+enum class OutputKind { standard_output, replace, write_through };
+
+struct OutputTarget {
+  std::string path;  // where the bytes go: symbolic links resolved, except through /proc
+  OutputKind kind = OutputKind::replace;
+};
+
+// Throws std::runtime_error (naming the path) for a directory, a symbolic-link loop or a path that
+// cannot be examined.
+OutputTarget resolve_output_target(const std::string& path);
+
 class AtomicOutput {
  public:
-  // Opens path + ".tmp.<pid>" (or stdout for "-"). Throws std::runtime_error if it cannot be opened,
-  // naming the path.
+  // Opens the temporary (or the write-through target, or stdout for "-"). Throws std::runtime_error
+  // if it cannot be opened, naming the path.
   explicit AtomicOutput(std::string path);
-  ~AtomicOutput();  // removes the temporary file unless committed
+  ~AtomicOutput();  // removes the temporary unless committed
   AtomicOutput(const AtomicOutput&) = delete;
   AtomicOutput& operator=(const AtomicOutput&) = delete;
 
@@ -24,17 +48,28 @@ class AtomicOutput {
 
  private:
   std::string path_;
+  OutputTarget target_;
   std::string temporary_;
+  int temporary_slot_ = -1;  // in the registry the signal handler cleans
   std::ofstream file_;
-  bool to_stdout_ = false;
   bool committed_ = false;
 };
 
 // Writes `text` to `path` ("-" = standard output) whole or not at all. Throws std::runtime_error.
 void write_file_atomically(const std::string& path, const std::string& text);
 
-// Throws std::runtime_error if a file cannot be created in the folder of path (checked before long
-// computations, so a bad path fails fast instead of after minutes of work).
+// Throws std::runtime_error if `path` cannot be written (checked before long computations, so a bad
+// path fails fast instead of after minutes of work).
 void check_writable(const std::string& path);
+
+// Throws std::invalid_argument when two outputs of one run, given as (option, path), would write the
+// same file (through links or different spellings): one would silently replace the other. Outputs
+// written through (devices such as /dev/null, FIFOs) may be shared.
+void check_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs);
+
+// Installs handlers that delete every live temporary on SIGINT, SIGTERM, SIGHUP and SIGPIPE and then
+// die of the signal; signals that are ignored (nohup, background jobs) stay ignored. For programs,
+// not for the library to call on its own.
+void remove_temporaries_on_signals();
 
 }  // namespace dfvn

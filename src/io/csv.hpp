@@ -24,9 +24,12 @@ struct PointTable {
   const double* row(std::size_t i) const { return coordinates.data() + i * dimension; }
 };
 
-// One point per line, `dimension` comma-separated finite numbers. The first line may be a header
-// (every field non-numeric, e.g. "x0,x1,x2"); blank lines are skipped. Throws InputError naming
-// the line on a wrong column count, text that is not a number, or NaN/Inf.
+// One point per line, `dimension` comma-separated finite numbers, each optionally in double quotes
+// ("0.5" is the number 0.5). The first line may be a header (no field of it a number, e.g.
+// "x0,x1,x2") and may start with a UTF-8 byte order mark; blank lines are skipped. Throws InputError
+// naming the line (and column) on a wrong column count, an unterminated quote, text that is not a
+// number (including a second sign, "+-1"), or NaN/Inf; the offending text is quoted shortened and
+// escaped (core/message_text.hpp).
 PointTable read_points_csv(std::istream& in, int dimension);
 
 // A double in the shortest form that still has 17 significant digits of precision ("%.17g"), so the

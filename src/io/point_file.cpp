@@ -1,5 +1,7 @@
 #include "io/point_file.hpp"
 
+#include "core/message_text.hpp"
+
 #include <bit>
 #include <cstdint>
 #include <string>
@@ -31,7 +33,9 @@ void write_npy(std::ostream& out, const PointSet& points) {
             static_cast<std::streamsize>(points.coordinates.size() * sizeof(double)));
 }
 
-std::string points_csv(const PointSet& points) {
+void write_points_csv(std::ostream& out, const PointSet& points) {
+  // Formatted and written in blocks of rows: memory stays small for any number of points.
+  constexpr std::size_t kBlockRows = 4096;
   std::string text = numbered_header("x", points.dimension) + '\n';
   for (std::size_t i = 0; i < points.size(); ++i) {
     for (int j = 0; j < points.dimension; ++j) {
@@ -39,20 +43,26 @@ std::string points_csv(const PointSet& points) {
       append_double(text, points.point(i)[j]);
     }
     text += '\n';
+    if ((i + 1) % kBlockRows == 0) {
+      out.write(text.data(), static_cast<std::streamsize>(text.size()));
+      text.clear();
+    }
   }
-  return text;
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));
 }
 
 PointFormat parse_point_format(std::string_view name) {
   if (name == "csv") return PointFormat::csv;
   if (name == "npy") return PointFormat::npy;
-  throw std::invalid_argument("unknown point format '" + std::string(name) + "' (allowed: csv, npy)");
+  throw std::invalid_argument("unknown point format " + quote_for_message(name) + " (allowed: csv, npy)");
 }
 
 void write_point_file(const std::string& path, const PointSet& points, PointFormat format) {
-  if (format == PointFormat::csv) return write_file_atomically(path, points_csv(points));
   AtomicOutput out(path);
-  write_npy(out.stream(), points);
+  if (format == PointFormat::csv)
+    write_points_csv(out.stream(), points);
+  else
+    write_npy(out.stream(), points);
   out.commit();
 }
 

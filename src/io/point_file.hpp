@@ -11,7 +11,7 @@
 namespace dfvn {
 
 void write_npy(std::ostream& out, const PointSet& points);
-std::string points_csv(const PointSet& points);
+void write_points_csv(std::ostream& out, const PointSet& points);
 
 enum class PointFormat { csv, npy };
 PointFormat parse_point_format(std::string_view name);  // "csv" | "npy"

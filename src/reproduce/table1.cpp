@@ -1,3 +1,4 @@
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -5,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "core/message_text.hpp"
 #include "io/atomic_file.hpp"
 #include "reproduce/paper_tables.hpp"
 #include "reproduce/reproduce.hpp"
@@ -27,8 +29,11 @@ std::vector<int> parse_dimension_list(std::string_view text) {
   std::vector<int> dims;
   auto parse_int = [&](std::string_view s) {
     if (s.empty() || s.find_first_not_of("0123456789") != std::string_view::npos)
-      throw std::invalid_argument(fmt::format("--dims: '{}' is not a list like 3-7 or 3,5,7", text));
-    const int v = std::stoi(std::string(s));
+      throw std::invalid_argument(fmt::format("--dims: {} is not a list like 3-7 or 3,5,7", quote_for_message(text)));
+    int v = 0;
+    const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (error != std::errc() || end != s.data() + s.size())
+      throw std::invalid_argument(fmt::format("--dims: {} is not a dimension in 3..7", quote_for_message(s)));
     table1_grid(v);  // range check with the message
     return v;
   };
@@ -41,7 +46,7 @@ std::vector<int> parse_dimension_list(std::string_view text) {
       dims.push_back(parse_int(part));
     } else {
       const int lo = parse_int(part.substr(0, dash)), hi = parse_int(part.substr(dash + 1));
-      if (lo > hi) throw std::invalid_argument(fmt::format("--dims: empty range '{}'", part));
+      if (lo > hi) throw std::invalid_argument(fmt::format("--dims: empty range {}", quote_for_message(part)));
       for (int d = lo; d <= hi; ++d) dims.push_back(d);
     }
     if (comma == std::string_view::npos) break;

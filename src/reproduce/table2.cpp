@@ -44,7 +44,8 @@ Table2Result run_table2(const WarpConfig& config, const StageProgress& progress)
         Table2Row row;
         row.variant = variant;
         row.seconds = stopwatch.seconds();
-        row.megapixels_per_second = megapixels / row.seconds;
+        // A warp faster than the clock's resolution would read 0 s and print Inf.
+        row.megapixels_per_second = megapixels / std::max(row.seconds, 1e-9);
         row.rmse = rmse(image, result.reference);
         row.field_evaluations = evaluations;
         result.rows.push_back(row);

@@ -5,16 +5,18 @@
 #include <omp.h>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 #include "core/parallel.hpp"
+#include "noise/noise_domain.hpp"
 
 namespace dfvn {
 
 void CnjOptions::validate() const {
   trace.validate();
-  if (!std::isfinite(step_scale) || step_scale <= 0.0)
-    throw std::invalid_argument("step scale must be a finite number > 0");
-  if (!std::isfinite(frequency) || frequency <= 0.0)
-    throw std::invalid_argument("frequency must be a finite number > 0");
+  if (!(step_scale > 0.0 && step_scale <= kMaxStepScale))
+    throw std::invalid_argument(fmt::format("step scale must be in (0, 2^20], got {:g}", step_scale));
+  check_noise_frequency(frequency);
   parse_noise_basis(to_string(noise));  // an unknown enum value throws
 }
 

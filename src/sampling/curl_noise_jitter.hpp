@@ -21,6 +21,10 @@ struct CnjOptions {
   NoiseBasis noise = kDefaultNoiseBasis;
   double step_scale = 0.35;
   double frequency = 0.2;
+  // A move of 2^20 lattice spacings is far past any useful jitter (a point moved more than K
+  // spacings has left the unit cube unless its streamline loops); the bound keeps every
+  // displacement, and the sum of their squares, far from overflow.
+  static constexpr double kMaxStepScale = 0x1p20;
 
   void validate() const;  // throws std::invalid_argument naming the option
 };

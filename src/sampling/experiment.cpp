@@ -1,6 +1,8 @@
 #include "sampling/experiment.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <unistd.h>
@@ -8,7 +10,10 @@
 #include <fmt/format.h>
 
 #include "core/dimension.hpp"
+#include "core/message_text.hpp"
+#include "core/parallel.hpp"
 #include "core/stopwatch.hpp"
+#include "noise/noise_domain.hpp"
 #include "sampling/jitter.hpp"
 #include "sampling/poisson_disk.hpp"
 
@@ -52,14 +57,19 @@ MethodPlan plan_method(const SampleConfig& config, Method method) {
   return plan;
 }
 
+namespace {
+
+// Per point: its coordinates, the moved copy or KD-tree index and bookkeeping (CNJ keeps a moved
+// copy, a flag and a displacement; the KD-tree a 4-byte index; the statistics an 8-byte distance).
+double estimated_bytes(const MethodPlan& plan, int dimension) {
+  return static_cast<double>(plan.requested) * (16.0 * dimension + 48.0);
+}
+
+}  // namespace
+
 double estimated_peak_bytes(const SampleConfig& config) {
-  // Per point: its coordinates, the moved copy or KD-tree index and bookkeeping (CNJ keeps a moved
-  // copy, a flag and a displacement; the KD-tree a 4-byte index; the statistics an 8-byte distance).
   double peak = 0.0;
-  for (Method m : config.methods) {
-    const double points = static_cast<double>(plan_method(config, m).requested);
-    peak = std::max(peak, points * (16.0 * config.dimension + 48.0));
-  }
+  for (Method m : config.methods) peak = std::max(peak, estimated_bytes(plan_method(config, m), config.dimension));
   return peak;
 }
 
@@ -68,8 +78,17 @@ void SampleConfig::validate() const {
     throw std::invalid_argument(fmt::format("--dim must be in {}..{}, got {}", kMinDimension, kMaxDimension, dimension));
   if (grid < 2) throw std::invalid_argument(fmt::format("--grid must be at least 2, got {}", grid));
   if (methods.empty()) throw std::invalid_argument("--methods must name at least one method");
+  check_thread_count(threads);
   if (protocol == Protocol::paper && grid * kPaperDelta > 1e6) throw std::invalid_argument("--grid is too large");
   cnj.validate();
+  if (std::find(methods.begin(), methods.end(), Method::cnj) != methods.end()) {
+    const double field_frequency = cnj.frequency / lattice().spacing();
+    if (!(field_frequency >= kMinNoiseFrequency && field_frequency <= kMaxNoiseFrequency))
+      throw std::invalid_argument(fmt::format(
+          "--frequency {:g} cycles per lattice spacing with --grid {} is a field frequency of {:g}, outside the "
+          "noise's [2^-50, 2^50]",
+          cnj.frequency, grid, field_frequency));
+  }
   if (!std::isfinite(pds_radius) || pds_radius < 0.0) throw std::invalid_argument("--pds-radius must be a finite number > 0");
   if (pds_candidates < 1) throw std::invalid_argument("--pds-candidates must be at least 1");
   if (!std::isfinite(max_memory_gib) || max_memory_gib < 0.0) throw std::invalid_argument("--max-memory must be >= 0");
@@ -86,6 +105,16 @@ void SampleConfig::validate() const {
     const MethodPlan plan = plan_method(*this, m);
     if (m == Method::sobol && plan.requested > (std::uint64_t{1} << 32))
       throw std::invalid_argument("Sobol supports at most 2^32 points");
+    if (compute_rdf && rdf.r_max > 0.0) {
+      try {
+        check_rdf_resolution(dimension, plan.domain.side, std::min(rdf.r_max, 0.999 * plan.domain.side), rdf.bins);
+      } catch (const std::invalid_argument&) {
+        throw std::invalid_argument(fmt::format(
+            "--rdf-max {:g} with --rdf-bins {} gives bins {:.3g} wide, too narrow for a finite g(r) in {}D; raise "
+            "--rdf-max or lower --rdf-bins",
+            rdf.r_max, rdf.bins, rdf.r_max / rdf.bins, dimension));
+      }
+    }
     if (m == Method::pds) {
       PoissonDiskOptions o;
       o.radius = plan.pds_radius;
@@ -93,13 +122,15 @@ void SampleConfig::validate() const {
       o.validate(dimension);
     }
   }
+  // An absurd --max-memory makes the limit Inf: then nothing is refused here, and an allocation that
+  // fails is reported by run_sampling.
   const double limit = max_memory_gib > 0.0 ? max_memory_gib * double(1ULL << 30) : 0.8 * physical_memory_bytes();
   const double need = estimated_peak_bytes(*this);
   if (need > limit)
     throw std::invalid_argument(fmt::format(
-        "--grid {} in {}D gives {} points, which need about {:.1f} GiB of memory (limit {:.1f} GiB); "
+        "--grid {} in {}D gives {} points, which need about {} of memory (limit {}); "
         "lower --grid or raise the limit with --max-memory GIB",
-        grid, dimension, count, need / double(1ULL << 30), limit / double(1ULL << 30)));
+        grid, dimension, count, byte_size(need), byte_size(limit)));
 }
 
 static PointSet generate_points(const SampleConfig& config, const MethodPlan& plan, std::string& notes,
@@ -147,29 +178,57 @@ void generate_points(const SampleConfig& config, MethodResult& result, const Sta
   result.points = generate_points(config, result.plan, result.notes, result.displacement, progress);
 }
 
+namespace {
+
+std::string out_of_memory_message(const SampleConfig& config, const MethodPlan& plan) {
+  return fmt::format("out of memory for the {} point set: {} points in {}D need about {}; lower --grid{}",
+                     to_string(plan.method), plan.requested, config.dimension,
+                     byte_size(estimated_bytes(plan, config.dimension)),
+                     config.max_memory_gib > 0.0 ? " or --max-memory" : "");
+}
+
+// Generate one point set, then its statistics.
+MethodResult run_method(const SampleConfig& config, const MethodPlan& plan, bool keep_points,
+                        const StageProgress& progress, const std::function<void(const MethodResult&)>& on_result) {
+  const Method method = plan.method;
+  MethodResult result;
+  result.plan = plan;
+  if (progress) progress(to_string(method), 0.0);
+  Stopwatch stopwatch;
+  generate_points(config, result, progress);
+  result.seconds_generate = stopwatch.seconds();
+  if (result.points.size() < 2)  // CNJ drops the points that leave the unit cube
+    throw std::invalid_argument(fmt::format("the {} point set has {} point(s) ({}); the statistics need at least 2",
+                                            to_string(method), result.points.size(), result.notes));
+  if (progress) progress("statistics", 0.0);
+  stopwatch.restart();
+  result.nearest = summarize_nearest_neighbours(nearest_neighbour_distances(result.points, config.knn, config.threads),
+                                                result.points);
+  result.seconds_stats = stopwatch.seconds();
+  if (config.compute_rdf) {
+    if (progress) progress("rdf", 0.0);
+    result.rdf = radial_distribution(result.points, config.rdf, config.seed, config.threads);
+  }
+  if (on_result) on_result(result);
+  if (!keep_points) result.points = PointSet{result.points.dimension, {}, result.points.domain};
+  return result;
+}
+
+}  // namespace
+
 std::vector<MethodResult> run_sampling(const SampleConfig& config, bool keep_points, const StageProgress& progress,
                                        const std::function<void(const MethodResult&)>& on_result) {
   config.validate();
   std::vector<MethodResult> results;
   for (Method method : config.methods) {
-    MethodResult result;
-    result.plan = plan_method(config, method);
-    if (progress) progress(to_string(method), 0.0);
-    Stopwatch stopwatch;
-    generate_points(config, result, progress);
-    result.seconds_generate = stopwatch.seconds();
-    if (progress) progress("statistics", 0.0);
-    stopwatch.restart();
-    result.nearest = summarize_nearest_neighbours(nearest_neighbour_distances(result.points, config.knn, config.threads),
-                                                  result.points);
-    result.seconds_stats = stopwatch.seconds();
-    if (config.compute_rdf) {
-      if (progress) progress("rdf", 0.0);
-      result.rdf = radial_distribution(result.points, config.rdf, config.seed, config.threads);
+    const MethodPlan plan = plan_method(config, method);
+    try {
+      results.push_back(run_method(config, plan, keep_points, progress, on_result));
+    } catch (const std::bad_alloc&) {
+      throw std::runtime_error(out_of_memory_message(config, plan));
+    } catch (const std::length_error&) {  // a std::vector longer than its max_size()
+      throw std::runtime_error(out_of_memory_message(config, plan));
     }
-    if (on_result) on_result(result);
-    if (!keep_points) result.points = PointSet{result.points.dimension, {}, result.points.domain};
-    results.push_back(std::move(result));
   }
   return results;
 }

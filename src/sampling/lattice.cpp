@@ -1,5 +1,7 @@
 #include "sampling/lattice.hpp"
 
+#include "core/message_text.hpp"
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -12,7 +14,7 @@ Method parse_method(std::string_view name) {
   if (name == "pds") return Method::pds;
   if (name == "sobol") return Method::sobol;
   if (name == "random") return Method::random;
-  throw std::invalid_argument("unknown method '" + std::string(name) + "' (allowed: cnj, jitter, pds, sobol, random)");
+  throw std::invalid_argument("unknown method " + quote_for_message(name) + " (allowed: cnj, jitter, pds, sobol, random)");
 }
 
 std::string_view to_string(Method method) {
@@ -29,7 +31,7 @@ std::string_view to_string(Method method) {
 Protocol parse_protocol(std::string_view name) {
   if (name == "paper") return Protocol::paper;
   if (name == "unit") return Protocol::unit;
-  throw std::invalid_argument("unknown protocol '" + std::string(name) + "' (allowed: paper, unit)");
+  throw std::invalid_argument("unknown protocol " + quote_for_message(name) + " (allowed: paper, unit)");
 }
 
 std::string_view to_string(Protocol protocol) { return protocol == Protocol::paper ? "paper" : "unit"; }

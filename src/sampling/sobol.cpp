@@ -1,5 +1,7 @@
 #include "sampling/sobol.hpp"
 
+#include "core/message_text.hpp"
+
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -13,7 +15,7 @@ namespace dfvn {
 Scramble parse_scramble(std::string_view name) {
   if (name == "owen") return Scramble::owen;
   if (name == "none") return Scramble::none;
-  throw std::invalid_argument("unknown scramble '" + std::string(name) + "' (allowed: owen, none)");
+  throw std::invalid_argument("unknown scramble " + quote_for_message(name) + " (allowed: owen, none)");
 }
 
 std::string_view to_string(Scramble scramble) { return scramble == Scramble::owen ? "owen" : "none"; }

@@ -1,5 +1,7 @@
 #include "stats/nearest_neighbour.hpp"
 
+#include "core/message_text.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -18,7 +20,7 @@ std::vector<double> nearest_neighbour_distances_flann(const PointSet& points, in
 KnnBackend parse_knn_backend(std::string_view name) {
   if (name == "nanoflann") return KnnBackend::nanoflann;
   if (name == "flann") return KnnBackend::flann;
-  throw std::invalid_argument("unknown KD-tree backend '" + std::string(name) + "' (allowed: nanoflann, flann)");
+  throw std::invalid_argument("unknown KD-tree backend " + quote_for_message(name) + " (allowed: nanoflann, flann)");
 }
 
 std::string_view to_string(KnnBackend backend) { return backend == KnnBackend::nanoflann ? "nanoflann" : "flann"; }

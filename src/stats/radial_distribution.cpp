@@ -1,8 +1,11 @@
 #include "stats/radial_distribution.hpp"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
+
+#include <fmt/format.h>
 
 #include "core/dimension.hpp"
 #include "core/hash.hpp"
@@ -20,6 +23,23 @@ double unit_ball_volume(int dimension) {
   return std::pow(std::numbers::pi, 0.5 * dimension) / std::tgamma(0.5 * dimension + 1.0);
 }
 
+void check_rdf_resolution(int dimension, double side, double r_max, int bins) {
+  // Each pair weight is at most 1 / (L - r_max)^N, since the overlap of the cube with its translate
+  // by d is prod_a (L - |d_a|) and |d_a| <= r_max; with at most q (n - 1) pairs, which the
+  // normalisation V^2 / (q (n - 1)) divides out, g_k <= V^2 / ((L - r_max)^N shell_k). The first
+  // shell, ball * width^N, is the narrowest. In base-2 logarithms, so the check cannot overflow.
+  const double width = r_max / bins;
+  const double log2_bound = 2.0 * dimension * std::log2(side) - dimension * std::log2(side - r_max) -
+                            std::log2(unit_ball_volume(dimension)) - dimension * std::log2(width);
+  // 2^1000 leaves room below DBL_MAX (about 2^1024) for the sums; the shell must not be subnormal.
+  const double shell = unit_ball_volume(dimension) * std::pow(width, dimension);
+  if (!(width > 0.0) || !(log2_bound < 1000.0) || !(shell >= std::numeric_limits<double>::min()))
+    throw std::invalid_argument(fmt::format(
+        "RDF r_max {:g} with {} bins gives bins {:.3g} wide, too narrow for a finite g(r) in {}D (the shell volumes "
+        "underflow); raise r_max or use fewer bins",
+        r_max, bins, width, dimension));
+}
+
 namespace {
 
 template <int N>
@@ -31,6 +51,7 @@ RdfCurve radial_distribution_impl(const PointSet& points, const RdfOptions& opti
   RdfCurve curve;
   curve.r_max = options.r_max > 0.0 ? options.r_max : 2.5 * std::pow(volume / static_cast<double>(n), 1.0 / N);
   if (curve.r_max >= side) curve.r_max = 0.999 * side;  // the edge correction needs |d_a| < L
+  check_rdf_resolution(N, side, curve.r_max, options.bins);
 
   std::vector<std::uint32_t> queries;
   if (options.max_queries == 0 || n <= options.max_queries) {

@@ -33,6 +33,11 @@ struct RdfCurve {
 // Independent of thread count: per-block histograms are summed in block order.
 RdfCurve radial_distribution(const PointSet& points, const RdfOptions& options, std::uint64_t seed, int threads);
 
+// Throws std::invalid_argument unless every g(r) of an RDF with this r_max (at most 0.999 side) and
+// number of bins is finite for points in a cube of this side: a bin too narrow has a shell volume
+// that underflows, and --rdf-max 1e-300 gave NaN.
+void check_rdf_resolution(int dimension, double side, double r_max, int bins);
+
 // Volume of the unit ball in N dimensions, pi^(N/2) / Gamma(N/2 + 1).
 double unit_ball_volume(int dimension);
 

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/parallel.hpp"
+#include "noise/noise_domain.hpp"
 
 #include <omp.h>
 
@@ -16,7 +17,13 @@ void WarpConfig::validate() const {
   if (width < 2 || height < 2 || width > 20000 || height > 20000)
     throw std::invalid_argument(fmt::format("image size must be 2..20000 per side, got {}x{}", width, height));
   if (!std::isfinite(time)) throw std::invalid_argument("warp time must be finite");
-  if (!std::isfinite(frequency) || frequency <= 0.0) throw std::invalid_argument("warp frequency must be > 0");
+  check_thread_count(threads);
+  check_noise_frequency(frequency, "warp frequency");
+  // Pixel centres lie in [0, 1] x [0, height / width]; the traces start there.
+  const double extent = std::max(1.0, static_cast<double>(height) / width);
+  if (!is_noise_argument(frequency * extent))
+    throw std::invalid_argument(fmt::format("warp frequency {:g} over an image {:g} units tall leaves the noise domain "
+                                            "(|frequency x coordinate| below 2^50)", frequency, extent));
 }
 
 std::string WarpVariant::label() const {

@@ -53,7 +53,7 @@ expect_error "dim too large" "" field --dim 9
 expect_message "dim too large" "dim"
 expect_error "dim too small" "" field --dim 1
 expect_error "negative frequency" "" field --dim 3 --frequency -2
-expect_message "negative frequency" "must be a finite number > 0"
+expect_message "negative frequency" "must be a number in \[2^-50, 2^50\]"
 expect_error "nan frequency" "" field --dim 3 --frequency nan
 expect_error "missing input file" "" field --dim 3 --input "$work/does-not-exist.csv"
 expect_error "unknown option" "" field --dim 3 --bogus
@@ -88,7 +88,7 @@ expect_error "sample dim" "" --dim 9 --grid 4
 expect_error "sample grid" "" --dim 3 --grid 1
 expect_message "sample grid" "grid"
 expect_error "sample memory" "" --dim 8 --grid 40 --max-memory 1
-expect_message "sample memory" "GiB of memory.*--max-memory"
+expect_message "sample memory" "PiB of memory (limit 1.00 GiB).*--max-memory"
 expect_error "sample method" "" --dim 3 --grid 4 --methods cnj,bogus
 expect_message "sample method" "unknown method 'bogus'"
 expect_error "sample duplicate method" "" --dim 3 --grid 4 --methods cnj,cnj

@@ -34,6 +34,37 @@ TEST(Csv, ErrorsNameTheLineAndTheProblem) {
   EXPECT_EQ(error_of("1,2\nx,y\n", 2), "line 2, column 1: 'x' is not a number");  // only line 1 may be a header
 }
 
+TEST(Csv, QuotedNumbersAreNumbersAndAHeaderIsOnlyTheFirstNonNumericLine) {
+  std::istringstream quoted_data("\"0.1\",\"0.2\"\n \"3\" , 4\n");
+  const PointTable t = read_points_csv(quoted_data, 2);
+  ASSERT_EQ(t.rows(), 2u) << "a quoted data line was taken as a header";
+  EXPECT_EQ(t.row(0)[0], 0.1);
+  EXPECT_EQ(t.row(1)[0], 3.0);
+  std::istringstream quoted_header("\"x0\",\"x,1\"\n1,2\n");
+  EXPECT_EQ(read_points_csv(quoted_header, 2).rows(), 1u);
+  EXPECT_EQ(error_of("x0,1\n2,3\n", 2), "line 1, column 1: 'x0' is not a number");  // half a header
+  EXPECT_EQ(error_of("\"1,2\n", 2), "line 1, column 1: unterminated quote");
+  EXPECT_EQ(error_of("\"1\"x,2\n", 2), "line 1, column 1: text after the closing quote");
+}
+
+TEST(Csv, SignsAndByteOrderMarks) {
+  std::istringstream plus("+1,-2\n");
+  EXPECT_EQ(read_points_csv(plus, 2).row(0)[0], 1.0);
+  EXPECT_EQ(error_of("+-1,2\n", 2), "line 1, column 1: '+-1' is not a number");
+  EXPECT_EQ(error_of("1,++2\n", 2), "line 1, column 2: '++2' is not a number");
+  EXPECT_EQ(error_of("1,--2\n", 2), "line 1, column 2: '--2' is not a number");
+  std::istringstream bom("\xEF\xBB\xBFx0,x1\n1,2\n");
+  EXPECT_EQ(read_points_csv(bom, 2).rows(), 1u);
+  EXPECT_EQ(error_of("1,2\n\xEF\xBB\xBF" "3,4\n", 2), "line 2, column 1: '\\xEF\\xBB\\xBF3' is not a number");
+}
+
+TEST(Csv, OffendingTextIsShortenedAndEscaped) {
+  EXPECT_EQ(error_of("1," + std::string(100000, 'a') + "\n", 2),
+            "line 1, column 2: '" + std::string(40, 'a') + "...' (100000 bytes) is not a number");
+  EXPECT_EQ(error_of(std::string("1,2\0x\n", 7), 2), "line 1, column 2: '2\\0x' is not a number");
+  EXPECT_EQ(error_of("1,\x1B[31m\n", 2), "line 1, column 2: '\\x1B[31m' is not a number");
+}
+
 TEST(Csv, DoublesRoundTrip) {
   for (double v : {0.1, 1.0 / 3.0, -1e-300, 6.02214076e23, 0.0}) {
     std::string s;

@@ -17,6 +17,23 @@ TEST(UnitBall, KnownVolumes) {
   EXPECT_NEAR(unit_ball_volume(4), std::numbers::pi * std::numbers::pi / 2.0, 1e-14);
 }
 
+// Bins so narrow that their shell volume underflows are refused before computing (--rdf-max 1e-300
+// gave NaN); every accepted configuration gives finite g.
+TEST(RadialDistribution, TooNarrowBinsAreRefusedAndAcceptedOnesAreFinite) {
+  for (int dimension : {2, 5, 8}) {
+    EXPECT_THROW(check_rdf_resolution(dimension, 1.0, 1e-300, 50), std::invalid_argument);
+    EXPECT_THROW(check_rdf_resolution(dimension, 1.0, 0.0, 50), std::invalid_argument);
+    EXPECT_NO_THROW(check_rdf_resolution(dimension, 1.0, 1e-6, 3));
+    const PointSet p = uniform_random_points(dimension, 500, Box{0.0, 1.0}, 5, 1);
+    RdfOptions options;
+    options.r_max = 1e-300;
+    EXPECT_THROW(radial_distribution(p, options, 1, 1), std::invalid_argument);
+    options.r_max = 1e-6;
+    options.bins = 3;
+    for (double g : radial_distribution(p, options, 1, 1).g) EXPECT_TRUE(std::isfinite(g));
+  }
+}
+
 // Uniform random points: g(r) -> 1 at every r, including r comparable to the box (the edge
 // correction). Each bin is compared with its Poisson standard error (pairs counted twice).
 TEST(RadialDistribution, UniformRandomPointsGiveOne) {

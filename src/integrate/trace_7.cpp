@@ -1,0 +1,5 @@
+#include "integrate/trace_impl.hpp"
+
+namespace dfvn {
+DFVN_INSTANTIATE_TRACER(7)
+}  // namespace dfvn
