@@ -30,6 +30,7 @@ enum class Stream : std::uint64_t {
   sobol_scramble = 5,
   rdf_queries = 6,
   turning_bands = 7,
+  gradient_noise = 8,
   test = 99,
 };
 

@@ -2,19 +2,12 @@
 
 #include <cmath>
 
-#include <Eigen/QR>
-
 #include "core/hash.hpp"
+#include "noise/quintic_fade.hpp"
+#include "noise/random_frame.hpp"
 
 namespace dfvn {
 namespace {
-
-// The quintic fade and its derivative.
-inline double fade(double u) { return u * u * u * (u * (6.0 * u - 15.0) + 10.0); }
-inline double fade_slope(double u) {
-  const double v = u * (u - 1.0);
-  return 30.0 * v * v;
-}
 
 // Slope of a band at integer knot j, uniform in [-1, 1): one SplitMix64 finaliser of the band's key
 // plus the knot times an odd constant (a bijection of j for each key).
@@ -28,24 +21,6 @@ inline double knot_slope(std::uint64_t key, std::int64_t j) {
 constexpr std::uint64_t kKeyLane = 0, kOffsetLane = 1, kFrameLane = 16;
 constexpr std::uint64_t kFrameIndexBase = 1ULL << 32;  // frames never share an index with a band
 
-// A Haar-random orthogonal N x N matrix: QR of a Gaussian matrix, with the signs of R's diagonal moved
-// into Q (without that correction Q is not uniformly distributed).
-template <int N>
-Eigen::Matrix<double, N, N> random_frame(std::uint64_t seed, std::uint64_t index) {
-  Eigen::Matrix<double, N, N> gaussian;
-  for (int e = 0; e < N * N; ++e) {
-    const auto lane = kFrameLane + 2 * static_cast<std::uint64_t>(e);
-    const double u1 = 1.0 - random_unit(seed, Stream::turning_bands, index, lane);  // in (0, 1]
-    const double u2 = random_unit(seed, Stream::turning_bands, index, lane + 1);
-    gaussian(e / N, e % N) = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);  // Box-Muller
-  }
-  const Eigen::HouseholderQR<Eigen::Matrix<double, N, N>> qr(gaussian);
-  Eigen::Matrix<double, N, N> q = qr.householderQ();
-  for (int j = 0; j < N; ++j)
-    if (qr.matrixQR()(j, j) < 0.0) q.col(j) = -q.col(j);
-  return q;
-}
-
 }  // namespace
 
 BandMoments quintic_band_moments() {
@@ -58,7 +33,7 @@ BandMoments quintic_band_moments() {
   for (int k = 0; k <= intervals; ++k) {
     const double u = static_cast<double>(k) / intervals;
     const double w = (k == 0 || k == intervals) ? 1.0 : (k % 2 ? 4.0 : 2.0);
-    const double s = fade(u), ds = fade_slope(u);
+    const double s = quintic_fade(u), ds = quintic_fade_slope(u);
     const double a = u * (1.0 - s), b = (u - 1.0) * s;
     const double da = 1.0 - s - u * ds, db = s + (u - 1.0) * ds;
     value2 += w * (a * a + b * b);
@@ -72,7 +47,7 @@ template <int N>
 TurningBandsNoise<N>::TurningBandsNoise(std::uint64_t seed) {
   for (int i = 0; i < N - 1; ++i)
     for (int frame = 0; frame < 2; ++frame) {
-      const auto q = random_frame<N>(seed, kFrameIndexBase + 2 * static_cast<std::uint64_t>(i) + frame);
+      const auto q = random_frame<N>(seed, Stream::turning_bands, kFrameIndexBase + 2 * static_cast<std::uint64_t>(i) + frame, kFrameLane);
       directions_.template block<N, N>(i * kBandsPerFunction + frame * N, 0) = q.transpose();
     }
   for (int b = 0; b < kBands; ++b) {
@@ -92,7 +67,7 @@ NoiseSample<N, N - 1> TurningBandsNoise<N>::evaluate(const Vec<N>& x) const {
     cell -= static_cast<std::int64_t>(t[b] < static_cast<double>(cell));
     const double u = t[b] - static_cast<double>(cell);
     const double g0 = knot_slope(keys_[b], cell), g1 = knot_slope(keys_[b], cell + 1);
-    const double s = fade(u), ds = fade_slope(u);
+    const double s = quintic_fade(u), ds = quintic_fade_slope(u);
     value[b] = g0 * u * (1.0 - s) + g1 * (u - 1.0) * s;
     slope[b] = g0 * (1.0 - s - u * ds) + g1 * (s + (u - 1.0) * ds);
   }
