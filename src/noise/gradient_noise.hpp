@@ -25,7 +25,7 @@ namespace dfvn {
 //   position in its cell and the gradients would be correlated through it. Rotated lattices are
 //   incommensurate, so over space the cell positions (u_0, ..., u_{N-2}) are independent and uniform.
 // n is C2 (s' and s'' vanish at 0 and 1), zero at every lattice point, with gradient g_ic there.
-// Cost per evaluation: (N - 1) 2^N corners, each N hashes and O(N) products.
+// Cost per evaluation: (N - 1) 2^N corners, each ceil(N / 2) hash mixes and O(N) products.
 template <int N>
 class QuinticGradientNoise final : public NoiseFunctions<N> {
  public:

@@ -95,6 +95,15 @@ TEST(ReproduceTable2, ShaderSettingIsTheShadersField) {
   EXPECT_EQ(shader.pattern, WarpPattern::shader_bands);
 }
 
+TEST(ReproduceTable2, WraparoundRmseWrapsDifferenceAndSquareModulo256) {
+  // 0 - 20 wraps to 236, and 236^2 = 55696 = 217 * 256 + 144 wraps to 144: sqrt(144) = 12, where the
+  // correct RMSE is 20. 30 - 10 = 20 wraps only in the square: 400 - 256 = 144 again.
+  const GrayImage a{2, 1, {0, 30}}, b{2, 1, {20, 10}};
+  EXPECT_DOUBLE_EQ(rmse_8bit_wraparound(a, b), 12.0);
+  const FloatImage fa{2, 1, {0.0f, 30.0f / 255}}, fb{2, 1, {20.0f / 255, 10.0f / 255}};
+  EXPECT_NEAR(rmse(fa, fb), 20.0, 1e-4);
+}
+
 TEST(ReproduceTable2, SupersamplingAveragesSubPixelSamples) {
   WarpConfig config = shader_warp_config();
   config.width = 8;
