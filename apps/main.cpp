@@ -111,10 +111,11 @@ void add_dimension_option(CLI::App& cmd, int& dimension, const std::string& help
 // --noise: the basis of the N-1 noise functions.
 void add_noise_option(CLI::App& cmd, std::string& noise) {
   cmd.add_option("--noise", noise,
-                 "Noise basis of the N-1 functions: turning-bands (healthy in every dimension) or simplex (the\n"
-                 "paper's construction; its field is nearly still in most of space from 4D on)")
+                 "Noise basis of the N-1 functions: turning-bands (healthy in every dimension), simplex (the\n"
+                 "paper's construction; its field is nearly still in most of space from 4D on) or quintic-gradient\n"
+                 "(Perlin-style lattice gradient noise, the noise of the paper's image-warping shader)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"simplex", "turning-bands"}));
+      ->check(CLI::IsMember({"simplex", "turning-bands", "quintic-gradient"}));
 }
 
 // Options that every subcommand shares.
@@ -396,7 +397,10 @@ struct ReproduceCommand {
   std::string out1 = "out/table1", out2 = "out/table2";
   std::string dims = "3-7", study_dims = "3-7";
   dfvn::CnjStudyConfig study;
-  dfvn::WarpConfig warp;
+  dfvn::WarpConfig warp{.width = 384, .height = 216};
+  dfvn::Table2Config table2;
+  std::string setting = "shader";
+  double frequency = 0.0, field_magnitude = 0.0;  // 0: the setting's
   bool quiet = false;
 
   void add_to(CLI::App& parent) {
@@ -416,15 +420,33 @@ struct ReproduceCommand {
     CLI::App* t2 = cmd->add_subcommand(
         "table2",
         "Table 2 and Figure 5: warp a wave image along 2D DFVN for t = 0.5 with Euler and RK4, 64 and 512 steps, 0, 1\n"
-        "and 10 Newton reprojection steps, against 2048 RK4 steps. Writes DIR/table2.csv, DIR/table2.md, the images\n"
-        "as PNG and (with gnuplot) DIR/figure5.png; prints table2.md.");
+        "and 10 Newton reprojection steps, against 2048 RK4 steps; RMSE from float values at two resolutions; Figure 5's\n"
+        "top row at several times t with 1000 RK4 steps. Writes DIR/table2.csv, DIR/table2.md, DIR/timeline.csv, the\n"
+        "images as PNG and (with gnuplot) DIR/figure5.png; prints table2.md.");
     t2->add_option("--out", out2, "Output directory")->capture_default_str();
+    t2->add_option("--setting", setting,
+                   "shader: the paper's shader (2D quintic gradient noise, noise_scale 7, its unnormalised field\n"
+                   "magnitude 7 sigma = 5.049 widths per unit time, t = 0.5, its wave-band image); ours: simplex noise,\n"
+                   "3 cycles per width, RMS |c| = 1, sine stripes (the earlier default)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"shader", "ours"}));
     t2->add_option("--width", warp.width, "Image width in pixels")->capture_default_str()->check(CLI::Range(2, 20000));
     t2->add_option("--height", warp.height, "Image height in pixels")->capture_default_str()->check(CLI::Range(2, 20000));
-    t2->add_option("--frequency", warp.frequency,
-                   "Noise frequency in cycles across the image width (RMS |c| = 1), in [2^-50, 2^50]")
+    t2->add_option("--second-width", table2.second_width,
+                   "Width of the second resolution (same aspect ratio) at which every RMSE is measured again; 0 = none")
         ->capture_default_str()
+        ->check(CLI::Range(0, 20000));
+    t2->add_option("--samples", warp.samples, "Samples per pixel, a perfect square (m x m sub-pixel grid, averaged)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({1, 4, 9, 16, 25, 36, 49, 64}));
+    t2->add_option("--frequency", frequency,
+                   "Noise frequency in cycles per image width (one cycle = 2 pi / k_eff); default: the setting's\n"
+                   "(shader: 7 k_eff / (2 pi) = 4.562, ours: 3)")
         ->check(kNoiseFrequency);
+    t2->add_option("--field-magnitude", field_magnitude,
+                   "RMS speed of the field in image widths per unit time, in [1e-6, 1e6]; default: the setting's\n"
+                   "(shader: 5.049, ours: 1)")
+        ->check(CLI::Range(1e-6, 1e6));
     t2->add_flag("--quiet", quiet, "No progress on stderr");
     add_common_options(*t2, common2);
     t2->callback([this] { run_table2(); });
@@ -474,12 +496,20 @@ struct ReproduceCommand {
   }
 
   void run_table2() {
-    warp.seed = common2.seed;
-    warp.threads = common2.threads;
-    warp.validate();
+    table2.setting = dfvn::parse_warp_setting(setting);
+    dfvn::WarpConfig& config = table2.warp;
+    config = dfvn::warp_config(table2.setting);
+    config.width = warp.width;
+    config.height = warp.height;
+    config.samples = warp.samples;
+    if (frequency > 0.0) config.frequency = frequency;
+    if (field_magnitude > 0.0) config.field_magnitude = field_magnitude;
+    config.seed = common2.seed;
+    config.threads = common2.threads;
+    table2.validate();
     make_output_dir(out2);
     Progress progress(!quiet);
-    const auto result = dfvn::run_table2(warp, [&](std::string_view stage, double f) { progress(stage, f); });
+    const auto result = dfvn::run_table2(table2, [&](std::string_view stage, double f) { progress(stage, f); });
     progress.finish();
     std::fputs(dfvn::write_table2(out2, result, log).c_str(), stdout);
   }

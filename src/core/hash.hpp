@@ -31,6 +31,7 @@ enum class Stream : std::uint64_t {
   rdf_queries = 6,
   turning_bands = 7,
   field_diagnosis = 8,
+  gradient_noise = 9,
   test = 99,
 };
 

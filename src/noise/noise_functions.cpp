@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "noise/gradient_noise.hpp"
 #include "noise/simplex_noise.hpp"
 #include "noise/turning_bands.hpp"
 
@@ -17,6 +18,7 @@ std::string_view to_string(NoiseBasis basis) {
   switch (basis) {
     case NoiseBasis::simplex: return "simplex";
     case NoiseBasis::turning_bands: return "turning-bands";
+    case NoiseBasis::quintic_gradient: return "quintic-gradient";
   }
   return "?";
 }
@@ -32,6 +34,7 @@ std::shared_ptr<const NoiseFunctions<N>> make_noise_functions(NoiseBasis basis, 
   switch (basis) {
     case NoiseBasis::simplex: return std::make_shared<const SimplexNoiseFunctions<N>>(seed);
     case NoiseBasis::turning_bands: return std::make_shared<const TurningBandsNoise<N>>(seed);
+    case NoiseBasis::quintic_gradient: return std::make_shared<const QuinticGradientNoise<N>>(seed);
   }
   throw std::invalid_argument("unknown noise basis");
 }

@@ -23,13 +23,16 @@ struct NoiseSample {
 // functions; noise/simplex_noise.hpp). Its field collapses from 4D on: kept to show that construction.
 // turning_bands: 2N one-dimensional quintic gradient noises per function along the rows of two random
 // orthonormal frames (noise/turning_bands.hpp): healthy in every dimension, the default.
-enum class NoiseBasis { simplex, turning_bands };
+// quintic_gradient: Perlin-style gradient noise with the quintic fade on a lattice, 2^N corners per
+// function (noise/gradient_noise.hpp): the noise of the paper's image-warping shader (Table 2).
+enum class NoiseBasis { simplex, turning_bands, quintic_gradient };
 inline constexpr NoiseBasis kDefaultNoiseBasis = NoiseBasis::turning_bands;
-inline constexpr NoiseBasis kAllNoiseBases[] = {NoiseBasis::simplex, NoiseBasis::turning_bands};
+inline constexpr NoiseBasis kAllNoiseBases[] = {NoiseBasis::simplex, NoiseBasis::turning_bands,
+                                                 NoiseBasis::quintic_gradient};
 
 NoiseBasis parse_noise_basis(std::string_view name);  // throws std::invalid_argument listing the names
 std::string_view to_string(NoiseBasis basis);
-std::string noise_basis_names();  // "simplex, turning-bands"
+std::string noise_basis_names();  // "simplex, turning-bands, quintic-gradient"
 
 // N-1 independent, seeded, deterministic C2 noise functions n_i: R^N -> R with zero mean.
 template <int N>

@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include <Eigen/QR>
-
 #include "core/hash.hpp"
+#include "noise/quintic_fade.hpp"
+#include "noise/random_frame.hpp"
 
 namespace dfvn {
 namespace {
@@ -21,24 +21,6 @@ inline double knot_slope(std::uint64_t key, std::int64_t j) {
 constexpr std::uint64_t kKeyLane = 0, kOffsetLane = 1, kFrameLane = 16;
 constexpr std::uint64_t kFrameIndexBase = 1ULL << 32;  // frames never share an index with a band
 
-// A Haar-random orthogonal N x N matrix: QR of a Gaussian matrix, with the signs of R's diagonal moved
-// into Q (without that correction Q is not uniformly distributed).
-template <int N>
-Eigen::Matrix<double, N, N> random_frame(std::uint64_t seed, std::uint64_t index) {
-  Eigen::Matrix<double, N, N> gaussian;
-  for (int e = 0; e < N * N; ++e) {
-    const auto lane = kFrameLane + 2 * static_cast<std::uint64_t>(e);
-    const double u1 = 1.0 - random_unit(seed, Stream::turning_bands, index, lane);  // in (0, 1]
-    const double u2 = random_unit(seed, Stream::turning_bands, index, lane + 1);
-    gaussian(e / N, e % N) = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);  // Box-Muller
-  }
-  const Eigen::HouseholderQR<Eigen::Matrix<double, N, N>> qr(gaussian);
-  Eigen::Matrix<double, N, N> q = qr.householderQ();
-  for (int j = 0; j < N; ++j)
-    if (qr.matrixQR()(j, j) < 0.0) q.col(j) = -q.col(j);
-  return q;
-}
-
 }  // namespace
 
 BandMoments quintic_band_moments() {
@@ -54,7 +36,7 @@ template <int N>
 TurningBandsNoise<N>::TurningBandsNoise(std::uint64_t seed) {
   for (int i = 0; i < N - 1; ++i)
     for (int frame = 0; frame < 2; ++frame) {
-      const auto q = random_frame<N>(seed, kFrameIndexBase + 2 * static_cast<std::uint64_t>(i) + frame);
+      const auto q = random_frame<N>(seed, Stream::turning_bands, kFrameIndexBase + 2 * static_cast<std::uint64_t>(i) + frame, kFrameLane);
       directions_.template block<N, N>(i * kBandsPerFunction + frame * N, 0) = q.transpose();
     }
   for (int b = 0; b < kBands; ++b) {

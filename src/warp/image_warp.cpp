@@ -1,15 +1,18 @@
 #include "warp/image_warp.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 
 #include <fmt/format.h>
+#include <omp.h>
 
 #include "core/parallel.hpp"
 #include "noise/noise_domain.hpp"
 
 #include <omp.h>
+#include "noise/gradient_noise.hpp"
 
 namespace dfvn {
 
@@ -24,6 +27,46 @@ void WarpConfig::validate() const {
   if (!is_noise_argument(frequency * extent))
     throw std::invalid_argument(fmt::format("warp frequency {:g} over an image {:g} units tall leaves the noise domain "
                                             "(|frequency x coordinate| below 2^50)", frequency, extent));
+  if (!std::isfinite(field_magnitude) || field_magnitude <= 0.0)
+    throw std::invalid_argument(fmt::format("field magnitude must be finite and > 0, got {}", field_magnitude));
+  const int side = static_cast<int>(std::lround(std::sqrt(static_cast<double>(samples))));
+  if (samples < 1 || samples > 256 || side * side != samples)
+    throw std::invalid_argument(fmt::format("samples per pixel must be a perfect square 1, 4, 9, ..., 256, got {}", samples));
+}
+
+WarpSetting parse_warp_setting(std::string_view name) {
+  if (name == "shader") return WarpSetting::shader;
+  if (name == "ours") return WarpSetting::ours;
+  throw std::invalid_argument("unknown warp setting '" + std::string(name) + "' (allowed: shader, ours)");
+}
+
+std::string_view to_string(WarpSetting setting) { return setting == WarpSetting::shader ? "shader" : "ours"; }
+
+WarpConfig shader_warp_config() {
+  const QuinticGradientNoise<2> basis(0);  // the moments do not depend on the seed
+  WarpConfig config;
+  config.time = 0.5;
+  config.noise = NoiseBasis::quintic_gradient;
+  // Scale s = 2 pi F / k_eff lattice cells per width (DfvnField) equals 7 for this F.
+  config.frequency = kShaderNoiseScale * basis.wavenumber() / (2.0 * std::numbers::pi);
+  // Ours is amplitude() x grad n, the shader's 7 x grad n: the ratio is the magnitude.
+  config.field_magnitude = kShaderNoiseScale / basis.amplitude();
+  config.pattern = WarpPattern::shader_bands;
+  return config;
+}
+
+WarpConfig ours_warp_config() {
+  WarpConfig config;
+  config.time = 0.5;
+  config.noise = NoiseBasis::simplex;
+  config.frequency = 3.0;
+  config.field_magnitude = 1.0;
+  config.pattern = WarpPattern::sine_stripes;
+  return config;
+}
+
+WarpConfig warp_config(WarpSetting setting) {
+  return setting == WarpSetting::shader ? shader_warp_config() : ours_warp_config();
 }
 
 std::string WarpVariant::label() const {
@@ -32,38 +75,51 @@ std::string WarpVariant::label() const {
   return s;
 }
 
-double wave_pattern(double x, double y) {
-  // Vertical stripes, 10 across the width, bent by a gentle horizontal wave.
-  const double phase = 10.0 * x + 0.6 * std::sin(2.0 * std::numbers::pi * 1.5 * y);
-  return 0.5 + 0.5 * std::sin(2.0 * std::numbers::pi * phase);
+double warp_pattern(WarpPattern pattern, double x, double y) {
+  switch (pattern) {
+    case WarpPattern::sine_stripes: {
+      const double phase = 10.0 * x + 0.6 * std::sin(2.0 * std::numbers::pi * 1.5 * y);
+      return 0.5 + 0.5 * std::sin(2.0 * std::numbers::pi * phase);
+    }
+    case WarpPattern::shader_bands: {
+      const double wavy_y = y + 0.05 * std::abs(std::cos(10.0 * std::numbers::pi * (x - y)));
+      // Band index mod 10 (floor works for negative coordinates too: traces leave the image).
+      const auto band = static_cast<std::int64_t>(std::floor(10.0 * wavy_y));
+      const std::int64_t k = ((band % 10) + 10) % 10;
+      return static_cast<double>((17 * k) % 13) / 13.0;
+    }
+  }
+  throw std::invalid_argument("unknown warp pattern");
 }
 
 namespace {
 
-std::uint8_t to_byte(double v) {
-  return static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(v, 0.0, 1.0)));
-}
-
-template <typename PixelFunction>
-GrayImage render(const WarpConfig& config, PixelFunction&& pixel) {
-  GrayImage image{config.width, config.height, std::vector<std::uint8_t>(static_cast<std::size_t>(config.width) * config.height)};
-  const double scale = 1.0 / config.width;
+// Evaluates `value_at(point)` on an m x m grid of sub-pixel centres of every pixel and averages.
+template <typename PointFunction>
+FloatImage render(const WarpConfig& config, PointFunction&& value_at) {
+  FloatImage image{config.width, config.height, std::vector<float>(static_cast<std::size_t>(config.width) * config.height)};
+  const int side = static_cast<int>(std::lround(std::sqrt(static_cast<double>(config.samples))));
+  const double pixel = 1.0 / config.width;  // the image is one unit wide
 #pragma omp parallel for schedule(dynamic, 1) num_threads(resolve_threads(config.threads))
   for (int row = 0; row < config.height; ++row)
-    for (int col = 0; col < config.width; ++col)
-      image.pixels[static_cast<std::size_t>(row) * config.width + col] =
-          to_byte(pixel(Vec<2>((col + 0.5) * scale, (row + 0.5) * scale)));
+    for (int col = 0; col < config.width; ++col) {
+      double sum = 0.0;
+      for (int a = 0; a < side; ++a)
+        for (int b = 0; b < side; ++b)
+          sum += value_at(Vec<2>((col + (b + 0.5) / side) * pixel, (row + (a + 0.5) / side) * pixel));
+      image.values[static_cast<std::size_t>(row) * config.width + col] = static_cast<float>(sum / config.samples);
+    }
   return image;
 }
 
 }  // namespace
 
-GrayImage source_image(const WarpConfig& config) {
+FloatImage source_image(const WarpConfig& config) {
   config.validate();
-  return render(config, [](const Vec<2>& p) { return wave_pattern(p[0], p[1]); });
+  return render(config, [&](const Vec<2>& p) { return warp_pattern(config.pattern, p[0], p[1]); });
 }
 
-GrayImage warp_image(const WarpConfig& config, const WarpVariant& variant, std::int64_t* field_evaluations) {
+FloatImage warp_image(const WarpConfig& config, const WarpVariant& variant, std::int64_t* field_evaluations) {
   config.validate();
   TraceOptions options;
   options.integrator = variant.integrator;
@@ -73,11 +129,12 @@ GrayImage warp_image(const WarpConfig& config, const WarpVariant& variant, std::
   // The field's frequency is per unit length; the image is one unit wide.
   const DfvnField<2> field(config.seed, FieldOptions{config.noise, config.frequency});
   const Tracer<2> tracer(field, options);
+  const double trace_time = config.time * config.field_magnitude;  // see WarpConfig::field_magnitude
   const int threads = resolve_threads(config.threads);
   std::vector<TraceStats> per_thread(static_cast<std::size_t>(threads));
-  GrayImage image = render(config, [&](const Vec<2>& p) {
-    const Vec<2> q = tracer.trace(p, config.time, &per_thread[static_cast<std::size_t>(omp_get_thread_num())]);
-    return wave_pattern(q[0], q[1]);
+  FloatImage image = render(config, [&](const Vec<2>& p) {
+    const Vec<2> q = tracer.trace(p, trace_time, &per_thread[static_cast<std::size_t>(omp_get_thread_num())]);
+    return warp_pattern(config.pattern, q[0], q[1]);
   });
   if (field_evaluations) {
     *field_evaluations = 0;
@@ -86,14 +143,31 @@ GrayImage warp_image(const WarpConfig& config, const WarpVariant& variant, std::
   return image;
 }
 
-double rmse(const GrayImage& a, const GrayImage& b) {
+double rmse(const FloatImage& a, const FloatImage& b) {
+  if (a.width != b.width || a.height != b.height) throw std::invalid_argument("RMSE of images of different sizes");
+  double sum = 0.0;
+  for (std::size_t i = 0; i < a.values.size(); ++i) {
+    const double d = 255.0 * (static_cast<double>(a.values[i]) - static_cast<double>(b.values[i]));
+    sum += d * d;
+  }
+  return std::sqrt(sum / static_cast<double>(a.values.size()));
+}
+
+double rmse_8bit_wraparound(const GrayImage& a, const GrayImage& b) {
   if (a.width != b.width || a.height != b.height) throw std::invalid_argument("RMSE of images of different sizes");
   double sum = 0.0;
   for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-    const double d = static_cast<double>(a.pixels[i]) - static_cast<double>(b.pixels[i]);
-    sum += d * d;
+    const auto difference = static_cast<std::uint8_t>(a.pixels[i] - b.pixels[i]);
+    sum += static_cast<std::uint8_t>(difference * difference);
   }
   return std::sqrt(sum / static_cast<double>(a.pixels.size()));
+}
+
+GrayImage to_gray(const FloatImage& image) {
+  GrayImage gray{image.width, image.height, std::vector<std::uint8_t>(image.values.size())};
+  for (std::size_t i = 0; i < image.values.size(); ++i)
+    gray.pixels[i] = static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(static_cast<double>(image.values[i]), 0.0, 1.0)));
+  return gray;
 }
 
 }  // namespace dfvn

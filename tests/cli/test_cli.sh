@@ -130,11 +130,17 @@ expect_message "reproduce dims" "Table 1 covers dimensions 3..7"
 expect_error "reproduce dims text" "" reproduce table1 --dims x --out "$work/r1"
 expect_error "reproduce width" "" reproduce table2 --width 1 --out "$work/r2"
 expect_error "reproduce which" "" reproduce table3
-"$bin" reproduce table2 --width 32 --height 18 --out "$work/r2" --quiet >"$work/t2.md" 2>"$work/err" && ok || bad "reproduce table2: $(cat "$work/err")"
-for f in table2.csv table2.md source.png reference.png rk4-64-newton1.png euler-512.png; do
+expect_error "reproduce setting" "" reproduce table2 --setting paper --out "$work/r2"
+expect_error "reproduce samples" "" reproduce table2 --samples 3 --out "$work/r2"
+expect_error "reproduce second width" "" reproduce table2 --width 32 --height 18 --second-width 3 --out "$work/r2"
+expect_message "reproduce second width" "second resolution is too small"
+"$bin" reproduce table2 --width 32 --height 18 --second-width 16 --out "$work/r2" --quiet >"$work/t2.md" 2>"$work/err" && ok || bad "reproduce table2: $(cat "$work/err")"
+for f in table2.csv table2.md timeline.csv source.png reference.png rk4-64-newton1.png euler-512.png time-0.5.png; do
   [[ -s $work/r2/$f ]] && ok || bad "reproduce table2 wrote no $f"
 done
 grep -q "paper Euler RMSE" "$work/t2.md" && ok || bad "table2.md on stdout"
+grep -q "Setting \`shader\`" "$work/t2.md" && ok || bad "table2 default is the shader's setting"
+echo "0.1,0.2" | "$bin" field --dim 2 --noise quintic-gradient >"$work/qg.csv" 2>"$work/err" && ok || bad "field --noise quintic-gradient: $(cat "$work/err")"
 
 echo "cli: $passed passed, $failed failed"
 [[ $failed -eq 0 ]]
