@@ -18,8 +18,11 @@
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 #include "io/point_file.hpp"
+#include "io/point_reader.hpp"
 #include "reproduce/reproduce.hpp"
 #include "sampling/experiment.hpp"
+#include "stats/point_set_statistics.hpp"
+#include "stats/realizations.hpp"
 
 namespace {
 
@@ -171,6 +174,7 @@ struct SampleCommand {
   std::string rdf_path;
   std::string points_dir;
   std::string format = "csv";
+  int realizations = 1;
   bool quiet = false;
 
   void add_to(CLI::App& parent) {
@@ -240,6 +244,10 @@ struct SampleCommand {
     cmd->add_option("--max-memory", config.max_memory_gib, "Memory limit in GiB for the point sets; 0 = 80% of the machine's")
         ->capture_default_str()
         ->check(kNonNegativeFinite);
+    cmd->add_option("--realizations", realizations,
+                    "Run seeds s..s+R-1 and add per method the mean and sd of every statistic (rows seed = mean, sd)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100000));
     cmd->add_flag("--quiet", quiet, "No progress on stderr (progress is only shown on a terminal)");
     add_common_options(*cmd, common);
     cmd->callback([this] { run(); });
@@ -263,6 +271,8 @@ struct SampleCommand {
     }
     config.compute_rdf = !rdf_path.empty();
     config.validate();
+    if (realizations > 1 && (!points_dir.empty() || !rdf_path.empty()))
+      throw std::invalid_argument("--points and --rdf take one realization; drop them or --realizations");
 
     // Check every destination before the work starts; each file is then written whole or not at all.
     dfvn::check_writable(stats_path);
@@ -274,19 +284,27 @@ struct SampleCommand {
 
     const dfvn::PointFormat point_format = dfvn::parse_point_format(format);
     Progress progress(!quiet);
-    const auto results = dfvn::run_sampling(
-        config, false, [&](std::string_view stage, double f) { progress(stage, f); },
-        [&](const dfvn::MethodResult& r) {
-          if (!points_dir.empty()) dfvn::write_point_file(point_file(r.plan.method), r.points, point_format);
-        });
-    progress.finish();
-
     std::string stats = dfvn::stats_csv_header();
     std::string rdf = dfvn::rdf_csv_header();
-    for (const auto& r : results) {
-      stats += dfvn::stats_csv_row(config, r);
-      rdf += dfvn::rdf_csv_rows(config, r);
+    std::vector<std::string> realization_rows;
+    // Realization r uses seed s + r; every statistic is then summarised as mean and sd per method.
+    for (int realization = 0; realization < realizations; ++realization) {
+      config.seed = common.seed + static_cast<std::uint64_t>(realization);
+      const auto results = dfvn::run_sampling(
+          config, false, [&](std::string_view stage, double f) { progress(stage, f); },
+          [&](const dfvn::MethodResult& r) {
+            if (!points_dir.empty()) dfvn::write_point_file(point_file(r.plan.method), r.points, point_format);
+          });
+      for (const auto& r : results) {
+        realization_rows.push_back(dfvn::stats_csv_row(config, r));
+        stats += realization_rows.back();
+        realization_rows.back().pop_back();
+        rdf += dfvn::rdf_csv_rows(config, r);
+      }
     }
+    progress.finish();
+    if (realizations > 1)
+      stats += dfvn::realization_summary_rows(stats.substr(0, stats.find('\n')), realization_rows, {"dim", "grid", "method"}, "seed");
     if (!rdf_path.empty()) dfvn::write_file_atomically(rdf_path, rdf);
     dfvn::write_file_atomically(stats_path, stats);
   }
@@ -360,7 +378,74 @@ struct ReproduceCommand {
   }
 };
 
-const std::vector<std::string> kSubcommands = {"sample", "field", "reproduce"};
+struct StatsCommand {
+  CommonOptions common;
+  std::string input;
+  std::string format;
+  std::string output = "-";
+  std::string knn = "nanoflann";
+  double domain_side = 1.0;
+  bool discrepancy = false;
+  bool quiet = false;
+
+  void add_to(CLI::App& parent) {
+    CLI::App* cmd = parent.add_subcommand(
+        "stats",
+        "Statistics of any point set in [0,S]^N, N = 1..8: nearest-neighbour summary and, with --discrepancy, the\n"
+        "CD, WD, MD and L2-star discrepancies (as scipy.stats.qmc.discrepancy). One CSV row per set; a dat file\n"
+        "with several sets also gets their mean and sd rows (set = mean, sd).");
+    cmd->add_option("--input", input, "Point file: CSV (optional header), NPY float64/float32 (points, N), or dat\n"
+                                      "(whitespace-separated, '#' lines between sets)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--format", format, "csv, npy or dat; default: from the extension (.txt = dat)")
+        ->check(CLI::IsMember({"csv", "npy", "dat"}));
+    cmd->add_option("--domain-side", domain_side, "The points lie in [0, S]^N")->capture_default_str()->check(kPositiveFinite);
+    cmd->add_flag("--discrepancy", discrepancy, "Also compute the four L2 discrepancies (O(points^2) work)");
+    cmd->add_option("--knn", knn, "KD-tree backend: nanoflann or flann")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"nanoflann", "flann"}));
+    cmd->add_option("--output", output, "Statistics CSV ('-' = standard output)")->capture_default_str();
+    cmd->add_flag("--quiet", quiet, "No progress on stderr (progress is only shown on a terminal)");
+    cmd->add_option("--threads", common.threads, "Worker threads; 0 = all cores (output never depends on it)")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
+    cmd->callback([this] { run(); });
+  }
+
+  void run() const {
+    const dfvn::InputFormat input_format =
+        format.empty() ? dfvn::input_format_from_path(input) : dfvn::parse_input_format(format);
+    std::vector<dfvn::PointSet> sets;
+    try {
+      for (auto& table : dfvn::read_point_sets(input, input_format)) {
+        sets.push_back(dfvn::PointSet{table.dimension, std::move(table.coordinates), dfvn::Box{0.0, domain_side}});
+        dfvn::check_point_set(sets.back());
+      }
+    } catch (const std::exception& e) {
+      fail(input + (sets.empty() ? ", " : fmt::format(", set {}: ", sets.size() - 1)) + e.what());
+    }
+    dfvn::check_writable(output);
+    dfvn::PointSetStatisticsOptions options;
+    options.discrepancy = discrepancy;
+    options.knn = dfvn::parse_knn_backend(knn);
+    options.threads = common.threads;
+    Progress progress(!quiet);
+    std::string csv = dfvn::point_statistics_csv_header();
+    std::vector<std::string> rows;
+    for (std::size_t s = 0; s < sets.size(); ++s) {
+      const auto statistics = dfvn::measure_point_set(sets[s], options, [&](std::string_view stage, double f) { progress(stage, f); });
+      rows.push_back(dfvn::point_statistics_csv_row(input, std::to_string(s), sets[s], statistics));
+      csv += rows.back();
+      rows.back().pop_back();
+    }
+    progress.finish();
+    if (sets.size() > 1) csv += dfvn::realization_summary_rows(csv.substr(0, csv.find('\n')), rows, {"input", "dim"}, "set");
+    dfvn::write_file_atomically(output, csv);
+  }
+};
+
+const std::vector<std::string> kSubcommands = {"sample", "field", "reproduce", "stats"};
 
 // 'sample' is the default: insert it when the first argument names no subcommand.
 std::vector<std::string> with_default_subcommand(int argc, char** argv) {
@@ -380,7 +465,7 @@ int main(int argc, char** argv) {
                kProgram};
   app.set_version_flag("--version", std::string(kProgram) + " " + DFVN_VERSION);
   app.require_subcommand(1);
-  app.footer("Subcommands: sample (default; 'dfvn-sample sample --help'), field, reproduce table1|table2\n"
+  app.footer("Subcommands: sample (default; 'dfvn-sample sample --help'), field, stats, reproduce table1|table2\n"
              "('dfvn-sample field --help', 'dfvn-sample reproduce table1 --help').");
   SampleCommand sample;
   sample.add_to(app);
@@ -388,6 +473,8 @@ int main(int argc, char** argv) {
   field.add_to(app);
   ReproduceCommand reproduce;
   reproduce.add_to(app);
+  StatsCommand stats;
+  stats.add_to(app);
 
   try {
     std::vector<std::string> args = with_default_subcommand(argc, argv);
