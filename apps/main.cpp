@@ -189,7 +189,7 @@ struct SampleCommand {
     cmd->add_option("--grid", config.grid, "Lattice points per axis K (>= 2); K^N points")
         ->capture_default_str()
         ->check(CLI::Range(2, 1 << 30));
-    cmd->add_option("--methods", methods, "Comma list of cnj, jitter, pds, sobol, random")->capture_default_str();
+    cmd->add_option("--methods", methods, "Comma list of cnj, jitter, pds, sobol, random, halton (scrambled unless --scramble none), lhs")->capture_default_str();
     cmd->add_option("--protocol", protocol,
                     "paper: Section 5.1 as the paper ran it (lattice linspace(0.05, 0.95, K), jitter +-0.05, PDS\n"
                     "radius 0.1 and Sobol on [0, 0.1K]^N, Sobol count 2^round(log2 K^N)); unit: every method in\n"
@@ -238,7 +238,7 @@ struct SampleCommand {
     cmd->add_option("--pds-candidates", config.pds_candidates, "Poisson disk candidates per active point (Bridson's k)")
         ->capture_default_str()
         ->check(CLI::Range(1, 100000));
-    cmd->add_option("--scramble", scramble, "Sobol scrambling: owen (hash-based, keyed by the seed) or none")
+    cmd->add_option("--scramble", scramble, "Sobol scrambling: owen (hash-based, keyed by the seed) or none; halton: digit permutations or none")
         ->capture_default_str()
         ->check(CLI::IsMember({"owen", "none"}));
     cmd->add_option("--max-memory", config.max_memory_gib, "Memory limit in GiB for the point sets; 0 = 80% of the machine's")

@@ -30,6 +30,8 @@ enum class Stream : std::uint64_t {
   sobol_scramble = 5,
   rdf_queries = 6,
   turning_bands = 7,
+  halton_scramble = 8,
+  latin_hypercube = 9,
   test = 99,
 };
 
