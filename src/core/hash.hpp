@@ -32,6 +32,7 @@ enum class Stream : std::uint64_t {
   turning_bands = 7,
   halton_scramble = 8,
   latin_hypercube = 9,
+  genz = 10,
   test = 99,
 };
 
