@@ -19,10 +19,12 @@
 #include "io/csv.hpp"
 #include "io/point_file.hpp"
 #include "io/point_reader.hpp"
+#include "reproduce/integration.hpp"
 #include "reproduce/reproduce.hpp"
 #include "sampling/experiment.hpp"
 #include "stats/point_set_statistics.hpp"
 #include "stats/realizations.hpp"
+#include "stats/spectrum.hpp"
 
 namespace {
 
@@ -316,7 +318,10 @@ struct SampleCommand {
 
 
 struct ReproduceCommand {
-  CommonOptions common1, common2;
+  CommonOptions common1, common2, common3;
+  dfvn::IntegrationConfig integration;
+  std::string integration_dims = "3-7";
+  std::string integration_methods = "cnj,jitter,pds,sobol,random,halton,lhs";
   std::string out1 = "out/table1", out2 = "out/table2";
   std::string dims = "3-7";
   dfvn::WarpConfig warp;
@@ -349,6 +354,39 @@ struct ReproduceCommand {
     t2->add_flag("--quiet", quiet, "No progress on stderr");
     add_common_options(*t2, common2);
     t2->callback([this] { run_table2(); });
+
+    CLI::App* t3 = cmd->add_subcommand(
+        "integration",
+        "Section 6.1's open question: integrate Genz's six test families with every method's point sets in 3D-7D, at\n"
+        "several sizes, over R realizations. Writes DIR/integration.csv, DIR/integration_slopes.csv, DIR/integration.md\n"
+        "(tables and a reading) and (with gnuplot) DIR/integration_<N>d.png; prints integration.md.");
+    t3->add_option("--out", integration.out_dir, "Output directory")->capture_default_str();
+    t3->add_option("--dims", integration_dims, "Dimensions: a range or list within 3..7")->capture_default_str();
+    t3->add_option("--realizations", integration.realizations, "Realizations R (seeds s..s+R-1); at least 16 for the reading")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 100000));
+    t3->add_option("--max-points", integration.max_points, "Largest lattice K^N per dimension")
+        ->capture_default_str()
+        ->check(CLI::Range(64, 1 << 24));
+    t3->add_option("--methods", integration_methods, "Comma list of methods")->capture_default_str();
+    t3->add_flag("--quiet", quiet, "No progress on stderr");
+    add_common_options(*t3, common3);
+    t3->callback([this] { run_integration(); });
+  }
+
+  void run_integration() {
+    integration.dimensions = dfvn::parse_dimension_list(integration_dims);
+    integration.seed = common3.seed;
+    integration.threads = common3.threads;
+    integration.methods.clear();
+    for (const auto& name : CLI::detail::split(integration_methods, ','))
+      integration.methods.push_back(dfvn::parse_method(CLI::detail::trim_copy(name)));
+    integration.validate();
+    make_output_dir(integration.out_dir);
+    Progress progress(!quiet);
+    const auto result = dfvn::run_integration(integration, [&](std::string_view stage, double f) { progress(stage, f); });
+    progress.finish();
+    std::fputs(dfvn::write_integration(result, log).c_str(), stdout);
   }
 
   static void log(const std::string& line) { std::fprintf(stderr, "%s: %s\n", kProgram, line.c_str()); }
@@ -385,6 +423,8 @@ struct StatsCommand {
   std::string output = "-";
   std::string knn = "nanoflann";
   double domain_side = 1.0;
+  std::string spectrum_prefix;
+  int spectrum_frequency = 32;
   bool discrepancy = false;
   bool quiet = false;
 
@@ -406,6 +446,12 @@ struct StatsCommand {
         ->capture_default_str()
         ->check(CLI::IsMember({"nanoflann", "flann"}));
     cmd->add_option("--output", output, "Statistics CSV ('-' = standard output)")->capture_default_str();
+    cmd->add_option("--spectrum", spectrum_prefix,
+                    "2D/3D sets: also write the power spectrum averaged over the file's sets: PREFIX.csv (k0..,power),\n"
+                    "PREFIX_radial.csv (frequency,power,anisotropy_db,frequencies) and, with gnuplot, PREFIX.png");
+    cmd->add_option("--spectrum-frequency", spectrum_frequency, "Largest integer frequency K of the spectrum ([-K,K]^N)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 512));
     cmd->add_flag("--quiet", quiet, "No progress on stderr (progress is only shown on a terminal)");
     cmd->add_option("--threads", common.threads, "Worker threads; 0 = all cores (output never depends on it)")
         ->capture_default_str()
@@ -426,6 +472,11 @@ struct StatsCommand {
       fail(input + (sets.empty() ? ", " : fmt::format(", set {}: ", sets.size() - 1)) + e.what());
     }
     dfvn::check_writable(output);
+    if (!spectrum_prefix.empty()) {
+      if (sets.front().dimension != 2 && sets.front().dimension != 3)
+        fail(fmt::format("--spectrum needs 2D or 3D points; '{}' holds {}D points", input, sets.front().dimension));
+      dfvn::check_writable(spectrum_prefix + ".csv");
+    }
     dfvn::PointSetStatisticsOptions options;
     options.discrepancy = discrepancy;
     options.knn = dfvn::parse_knn_backend(knn);
@@ -441,6 +492,12 @@ struct StatsCommand {
     }
     progress.finish();
     if (sets.size() > 1) csv += dfvn::realization_summary_rows(csv.substr(0, csv.find('\n')), rows, {"input", "dim"}, "set");
+    if (!spectrum_prefix.empty()) {
+      progress("spectrum", 0.0);
+      dfvn::write_spectrum_files(spectrum_prefix, dfvn::power_spectrum(sets, spectrum_frequency, common.threads),
+                                 [](const std::string& line) { std::fprintf(stderr, "%s: %s\n", kProgram, line.c_str()); });
+      progress.finish();
+    }
     dfvn::write_file_atomically(output, csv);
   }
 };
@@ -465,7 +522,7 @@ int main(int argc, char** argv) {
                kProgram};
   app.set_version_flag("--version", std::string(kProgram) + " " + DFVN_VERSION);
   app.require_subcommand(1);
-  app.footer("Subcommands: sample (default; 'dfvn-sample sample --help'), field, stats, reproduce table1|table2\n"
+  app.footer("Subcommands: sample (default; 'dfvn-sample sample --help'), field, stats, reproduce table1|table2|integration\n"
              "('dfvn-sample field --help', 'dfvn-sample reproduce table1 --help').");
   SampleCommand sample;
   sample.add_to(app);

@@ -76,5 +76,21 @@ expect_error "no input" "input" stats
   && ok || bad "realization rows: $(cut -d, -f3,11 "$work/r.csv" | tr '\n' ' ')"
 expect_error "realizations and points" "one realization" --dim 3 --grid 4 --realizations 2 --points "$work/rp"
 
+# stats --spectrum: 2D sets (the file's sets are averaged); not for 4D.
+"$bin" --dim 2 --grid 16 --methods jitter --protocol unit --points "$work/s2" --quiet >/dev/null || bad "sample 2D"
+"$bin" stats --input "$work/s2/jitter.csv" --spectrum "$work/spec" --spectrum-frequency 20 >/dev/null 2>"$work/err" && ok || bad "spectrum: $(cat "$work/err")"
+[[ $(wc -l <"$work/spec.csv") -eq $((41 * 41 + 1)) && $(wc -l <"$work/spec_radial.csv") -eq 21 ]] && ok || bad "spectrum files"
+"$bin" --dim 4 --grid 3 --methods jitter --protocol unit --points "$work/s4" --quiet >/dev/null || bad "sample 4D"
+expect_error "spectrum 4D" "needs 2D or 3D points" stats --input "$work/s4/jitter.csv" --spectrum "$work/spec4"
+
+# reproduce integration, small: every file and a reading.
+"$bin" reproduce integration --dims 3 --realizations 2 --max-points 512 --methods cnj,jitter,random --out "$work/int" --quiet \
+  >"$work/int.md" 2>"$work/err" && ok || bad "reproduce integration: $(cat "$work/err")"
+for f in integration.csv integration_slopes.csv integration.md; do [[ -s $work/int/$f ]] && ok || bad "integration wrote no $f"; done
+[[ $(tail -n +2 "$work/int/integration.csv" | wc -l) -eq $((6 * 3 * $(cut -d, -f4 "$work/int/integration.csv" | tail -n +2 | sort -u | wc -l))) ]] && ok || bad "integration rows"
+grep -q "CNJ against the jittering" "$work/int.md" && ok || bad "integration reading"
+expect_error "integration dims" "Table 1 covers dimensions 3..7" reproduce integration --dims 9 --out "$work/int2"
+expect_error "integration realizations" "realizations" reproduce integration --realizations 1 --out "$work/int2"
+
 echo "cli_stats: $passed passed, $failed failed"
 [[ $failed -eq 0 ]]
