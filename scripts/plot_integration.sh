@@ -34,7 +34,7 @@ for d in $dims; do
         read -r n0 e0 <<<"$first"
         plots+=("$e0 * ($n0 / x) ** 0.5 with lines dashtype 3 linecolor rgb 'gray40' notitle")
       fi
-      echo "set title '$f'"
+      echo "set title '$f' noenhanced"
       (IFS=,; echo "plot ${plots[*]}")
     done
     echo "unset multiplot"
