@@ -24,8 +24,13 @@
 #include "io/point_file.hpp"
 #include "reproduce/cnj_study.hpp"
 #include "noise/noise_domain.hpp"
+#include "io/point_reader.hpp"
+#include "reproduce/integration.hpp"
 #include "reproduce/reproduce.hpp"
 #include "sampling/experiment.hpp"
+#include "stats/point_set_statistics.hpp"
+#include "stats/realizations.hpp"
+#include "stats/spectrum.hpp"
 
 namespace {
 
@@ -52,6 +57,7 @@ CLI::Validator finite_number(double bound, bool or_equal, const std::string& nam
       },
       name);
 }
+const CLI::Validator kPositiveFinite = finite_number(0.0, false, "POSITIVE");
 const CLI::Validator kNonNegativeFinite = finite_number(0.0, true, "NONNEGATIVE");
 
 // A noise frequency in the supported range (noise/noise_domain.hpp); a subnormal one gave Inf.
@@ -260,6 +266,7 @@ struct SampleCommand {
   std::string rdf_path;
   std::string points_dir;
   std::string format = "csv";
+  int realizations = 1;
   bool quiet = false;
 
   void add_to(CLI::App& parent) {
@@ -274,7 +281,7 @@ struct SampleCommand {
     cmd->add_option("--grid", config.grid, "Lattice points per axis K (>= 2); K^N points")
         ->capture_default_str()
         ->check(CLI::Range(2, 1 << 30));
-    cmd->add_option("--methods", methods, "Comma list of cnj, jitter, pds, sobol, random")->capture_default_str();
+    cmd->add_option("--methods", methods, "Comma list of cnj, jitter, pds, sobol, random, halton (scrambled unless --scramble none), lhs")->capture_default_str();
     cmd->add_option("--protocol", protocol,
                     "paper: Section 5.1 as the paper ran it (lattice linspace(0.05, 0.95, K), jitter +-0.05, PDS\n"
                     "radius 0.1 and Sobol on [0, 0.1K]^N, Sobol count 2^round(log2 K^N)); unit: every method in\n"
@@ -325,12 +332,16 @@ struct SampleCommand {
     cmd->add_option("--pds-candidates", config.pds_candidates, "Poisson disk candidates per active point (Bridson's k)")
         ->capture_default_str()
         ->check(CLI::Range(1, 100000));
-    cmd->add_option("--scramble", scramble, "Sobol scrambling: owen (hash-based, keyed by the seed) or none")
+    cmd->add_option("--scramble", scramble, "Sobol scrambling: owen (hash-based, keyed by the seed) or none; halton: digit permutations or none")
         ->capture_default_str()
         ->check(CLI::IsMember({"owen", "none"}));
     cmd->add_option("--max-memory", config.max_memory_gib, "Memory limit in GiB for the point sets; 0 = 80% of the machine's")
         ->capture_default_str()
         ->check(kNonNegativeFinite);
+    cmd->add_option("--realizations", realizations,
+                    "Run seeds s..s+R-1 and add per method the mean and sd of every statistic (rows seed = mean, sd)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100000));
     cmd->add_flag("--quiet", quiet, "No progress on stderr (progress is only shown on a terminal)");
     add_common_options(*cmd, common);
     cmd->callback([this] { run(); });
@@ -354,6 +365,8 @@ struct SampleCommand {
     }
     config.compute_rdf = !rdf_path.empty();
     config.validate();
+    if (realizations > 1 && (!points_dir.empty() || !rdf_path.empty()))
+      throw std::invalid_argument("--points and --rdf take one realization; drop them or --realizations");
 
     // Check every destination before the work starts; each file is then written whole or not at all.
     std::vector<std::pair<std::string, std::string>> outputs = {{"--stats", stats_path}};
@@ -370,19 +383,27 @@ struct SampleCommand {
 
     const dfvn::PointFormat point_format = dfvn::parse_point_format(format);
     Progress progress(!quiet);
-    const auto results = dfvn::run_sampling(
-        config, false, [&](std::string_view stage, double f) { progress(stage, f); },
-        [&](const dfvn::MethodResult& r) {
-          if (!points_dir.empty()) dfvn::write_point_file(point_file(r.plan.method), r.points, point_format);
-        });
-    progress.finish();
-
     std::string stats = dfvn::stats_csv_header();
     std::string rdf = dfvn::rdf_csv_header();
-    for (const auto& r : results) {
-      stats += dfvn::stats_csv_row(config, r);
-      rdf += dfvn::rdf_csv_rows(config, r);
+    std::vector<std::string> realization_rows;
+    // Realization r uses seed s + r; every statistic is then summarised as mean and sd per method.
+    for (int realization = 0; realization < realizations; ++realization) {
+      config.seed = common.seed + static_cast<std::uint64_t>(realization);
+      const auto results = dfvn::run_sampling(
+          config, false, [&](std::string_view stage, double f) { progress(stage, f); },
+          [&](const dfvn::MethodResult& r) {
+            if (!points_dir.empty()) dfvn::write_point_file(point_file(r.plan.method), r.points, point_format);
+          });
+      for (const auto& r : results) {
+        realization_rows.push_back(dfvn::stats_csv_row(config, r));
+        stats += realization_rows.back();
+        realization_rows.back().pop_back();
+        rdf += dfvn::rdf_csv_rows(config, r);
+      }
     }
+    progress.finish();
+    if (realizations > 1)
+      stats += dfvn::realization_summary_rows(stats.substr(0, stats.find('\n')), realization_rows, {"dim", "grid", "method"}, "seed");
     if (!rdf_path.empty()) dfvn::write_file_atomically(rdf_path, rdf);
     dfvn::write_file_atomically(stats_path, stats);
   }
@@ -393,7 +414,10 @@ struct SampleCommand {
 
 
 struct ReproduceCommand {
-  CommonOptions common1, common2, common3;
+  CommonOptions common1, common2, common3, common4;
+  dfvn::IntegrationConfig integration;
+  std::string integration_dims = "3-7";
+  std::string integration_methods = "cnj,jitter,pds,sobol,random,halton,lhs";
   std::string out1 = "out/table1", out2 = "out/table2";
   std::string dims = "3-7", study_dims = "3-7";
   dfvn::CnjStudyConfig study;
@@ -466,6 +490,7 @@ struct ReproduceCommand {
     s->add_flag("--quiet", quiet, "No progress on stderr");
     add_common_options(*s, common3);
     s->callback([this] { run_cnj_study(); });
+    add_integration(cmd);
   }
 
   void run_cnj_study() {
@@ -478,6 +503,41 @@ struct ReproduceCommand {
     const auto result = dfvn::run_cnj_study(study, [&](std::string_view stage, double f) { progress(stage, f); });
     progress.finish();
     std::fputs(dfvn::write_cnj_study(result, log).c_str(), stdout);
+  }
+
+  void add_integration(CLI::App* cmd) {
+    CLI::App* t3 = cmd->add_subcommand(
+        "integration",
+        "Section 6.1's open question: integrate Genz's six test families with every method's point sets in 3D-7D, at\n"
+        "several sizes, over R realizations. Writes DIR/integration.csv, DIR/integration_slopes.csv, DIR/integration.md\n"
+        "(tables and a reading) and (with gnuplot) DIR/integration_<N>d.png; prints integration.md.");
+    t3->add_option("--out", integration.out_dir, "Output directory")->capture_default_str();
+    t3->add_option("--dims", integration_dims, "Dimensions: a range or list within 3..7")->capture_default_str();
+    t3->add_option("--realizations", integration.realizations, "Realizations R (seeds s..s+R-1); at least 16 for the reading")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 100000));
+    t3->add_option("--max-points", integration.max_points, "Largest lattice K^N per dimension")
+        ->capture_default_str()
+        ->check(CLI::Range(64, 1 << 24));
+    t3->add_option("--methods", integration_methods, "Comma list of methods")->capture_default_str();
+    t3->add_flag("--quiet", quiet, "No progress on stderr");
+    add_common_options(*t3, common4);
+    t3->callback([this] { run_integration(); });
+  }
+
+  void run_integration() {
+    integration.dimensions = dfvn::parse_dimension_list(integration_dims);
+    integration.seed = common4.seed;
+    integration.threads = common4.threads;
+    integration.methods.clear();
+    for (const auto& name : CLI::detail::split(integration_methods, ','))
+      integration.methods.push_back(dfvn::parse_method(CLI::detail::trim_copy(name)));
+    integration.validate();
+    make_output_dir(integration.out_dir);
+    Progress progress(!quiet);
+    const auto result = dfvn::run_integration(integration, [&](std::string_view stage, double f) { progress(stage, f); });
+    progress.finish();
+    std::fputs(dfvn::write_integration(result, log).c_str(), stdout);
   }
 
   static void log(const std::string& line) { std::fprintf(stderr, "%s: %s\n", kProgram, line.c_str()); }
@@ -515,7 +575,93 @@ struct ReproduceCommand {
   }
 };
 
-const std::vector<std::string> kSubcommands = {"sample", "field", "reproduce"};
+struct StatsCommand {
+  CommonOptions common;
+  std::string input;
+  std::string format;
+  std::string output = "-";
+  std::string knn = "nanoflann";
+  double domain_side = 1.0;
+  std::string spectrum_prefix;
+  int spectrum_frequency = 32;
+  bool discrepancy = false;
+  bool quiet = false;
+
+  void add_to(CLI::App& parent) {
+    CLI::App* cmd = parent.add_subcommand(
+        "stats",
+        "Statistics of any point set in [0,S]^N, N = 1..8: nearest-neighbour summary and, with --discrepancy, the\n"
+        "CD, WD, MD and L2-star discrepancies (as scipy.stats.qmc.discrepancy). One CSV row per set; a dat file\n"
+        "with several sets also gets their mean and sd rows (set = mean, sd).");
+    cmd->add_option("--input", input, "Point file: CSV (optional header), NPY float64/float32 (points, N), or dat\n"
+                                      "(whitespace-separated, '#' lines between sets)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--format", format, "csv, npy or dat; default: from the extension (.txt = dat)")
+        ->check(CLI::IsMember({"csv", "npy", "dat"}));
+    cmd->add_option("--domain-side", domain_side, "The points lie in [0, S]^N")->capture_default_str()->check(kPositiveFinite);
+    cmd->add_flag("--discrepancy", discrepancy, "Also compute the four L2 discrepancies (O(points^2) work)");
+    cmd->add_option("--knn", knn, "KD-tree backend: nanoflann or flann")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"nanoflann", "flann"}));
+    cmd->add_option("--output", output, "Statistics CSV ('-' = standard output)")->capture_default_str();
+    cmd->add_option("--spectrum", spectrum_prefix,
+                    "2D/3D sets: also write the power spectrum averaged over the file's sets: PREFIX.csv (k0..,power),\n"
+                    "PREFIX_radial.csv (frequency,power,anisotropy_db,frequencies) and, with gnuplot, PREFIX.png");
+    cmd->add_option("--spectrum-frequency", spectrum_frequency, "Largest integer frequency K of the spectrum ([-K,K]^N)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 512));
+    cmd->add_flag("--quiet", quiet, "No progress on stderr (progress is only shown on a terminal)");
+    cmd->add_option("--threads", common.threads, "Worker threads; 0 = all cores (output never depends on it)")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
+    cmd->callback([this] { run(); });
+  }
+
+  void run() const {
+    const dfvn::InputFormat input_format =
+        format.empty() ? dfvn::input_format_from_path(input) : dfvn::parse_input_format(format);
+    std::vector<dfvn::PointSet> sets;
+    try {
+      for (auto& table : dfvn::read_point_sets(input, input_format)) {
+        sets.push_back(dfvn::PointSet{table.dimension, std::move(table.coordinates), dfvn::Box{0.0, domain_side}});
+        dfvn::check_point_set(sets.back());
+      }
+    } catch (const std::exception& e) {
+      fail(input + (sets.empty() ? ", " : fmt::format(", set {}: ", sets.size() - 1)) + e.what());
+    }
+    dfvn::check_writable(output);
+    if (!spectrum_prefix.empty()) {
+      if (sets.front().dimension != 2 && sets.front().dimension != 3)
+        fail(fmt::format("--spectrum needs 2D or 3D points; '{}' holds {}D points", input, sets.front().dimension));
+      dfvn::check_writable(spectrum_prefix + ".csv");
+    }
+    dfvn::PointSetStatisticsOptions options;
+    options.discrepancy = discrepancy;
+    options.knn = dfvn::parse_knn_backend(knn);
+    options.threads = common.threads;
+    Progress progress(!quiet);
+    std::string csv = dfvn::point_statistics_csv_header();
+    std::vector<std::string> rows;
+    for (std::size_t s = 0; s < sets.size(); ++s) {
+      const auto statistics = dfvn::measure_point_set(sets[s], options, [&](std::string_view stage, double f) { progress(stage, f); });
+      rows.push_back(dfvn::point_statistics_csv_row(input, std::to_string(s), sets[s], statistics));
+      csv += rows.back();
+      rows.back().pop_back();
+    }
+    progress.finish();
+    if (sets.size() > 1) csv += dfvn::realization_summary_rows(csv.substr(0, csv.find('\n')), rows, {"input", "dim"}, "set");
+    if (!spectrum_prefix.empty()) {
+      progress("spectrum", 0.0);
+      dfvn::write_spectrum_files(spectrum_prefix, dfvn::power_spectrum(sets, spectrum_frequency, common.threads),
+                                 [](const std::string& line) { std::fprintf(stderr, "%s: %s\n", kProgram, line.c_str()); });
+      progress.finish();
+    }
+    dfvn::write_file_atomically(output, csv);
+  }
+};
+
+const std::vector<std::string> kSubcommands = {"sample", "field", "reproduce", "stats"};
 
 // CLI11 echoes arguments verbatim in its messages: shorten and escape each one that is long or holds
 // bytes that are not printable ASCII (core/message_text.hpp).
@@ -577,7 +723,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string(kProgram) + " " + DFVN_VERSION);
   app.set_help_all_flag("--help-all", "Print the help of every subcommand and exit");
   app.require_subcommand(1);
-  app.footer("Subcommands: sample (default; 'dfvn-sample sample --help'), field, reproduce table1|table2|cnj-study\n"
+  app.footer("Subcommands: sample (default; 'dfvn-sample sample --help'), field, stats,\n"
+             "reproduce table1|table2|cnj-study|integration\n"
              "('dfvn-sample field --help', 'dfvn-sample reproduce table1 --help').");
   SampleCommand sample;
   sample.add_to(app);
@@ -585,6 +732,8 @@ int main(int argc, char** argv) {
   field.add_to(app);
   ReproduceCommand reproduce;
   reproduce.add_to(app);
+  StatsCommand stats;
+  stats.add_to(app);
 
   dfvn::remove_temporaries_on_signals();
   const std::vector<std::string> given(argv + 1, argv + argc);

@@ -32,6 +32,9 @@ enum class Stream : std::uint64_t {
   turning_bands = 7,
   field_diagnosis = 8,
   gradient_noise = 9,
+  halton_scramble = 10,
+  latin_hypercube = 11,
+  genz = 12,
   test = 99,
 };
 

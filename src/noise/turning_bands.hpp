@@ -56,13 +56,6 @@ struct BandMoments {
 };
 BandMoments quintic_band_moments();
 
-// The quintic fade s(u) = 6u^5 - 15u^4 + 10u^3 and its derivative 30 u^2 (u - 1)^2.
-inline double quintic_fade(double u) { return u * u * u * (u * (6.0 * u - 15.0) + 10.0); }
-inline double quintic_fade_slope(double u) {
-  const double v = u * (u - 1.0);
-  return 30.0 * v * v;
-}
-
 extern template class TurningBandsNoise<2>;
 extern template class TurningBandsNoise<3>;
 extern template class TurningBandsNoise<4>;

@@ -88,6 +88,8 @@ std::string method_title(Method m) {
     case Method::pds: return "PDS";
     case Method::sobol: return "Sobol";
     case Method::random: return "Random";
+    case Method::halton: return "Halton";
+    case Method::lhs: return "LHS";
   }
   return "?";
 }

@@ -14,7 +14,9 @@
 #include "core/parallel.hpp"
 #include "core/stopwatch.hpp"
 #include "noise/noise_domain.hpp"
+#include "sampling/halton.hpp"
 #include "sampling/jitter.hpp"
+#include "sampling/latin_hypercube.hpp"
 #include "sampling/poisson_disk.hpp"
 
 namespace dfvn {
@@ -52,6 +54,10 @@ MethodPlan plan_method(const SampleConfig& config, Method method) {
         const int exponent = static_cast<int>(std::lround(std::log2(static_cast<double>(lattice_points))));
         plan.requested = std::uint64_t{1} << std::min(exponent, 32);
       }
+      break;
+    case Method::halton:
+    case Method::lhs:  // the alternatives to Sobol a user would pick: Sobol's domain, the lattice's count
+      plan.domain = paper ? paper_box : Box{0.0, 1.0};
       break;
   }
   return plan;
@@ -170,6 +176,12 @@ static PointSet generate_points(const SampleConfig& config, const MethodPlan& pl
     case Method::sobol:
       notes = fmt::format("scramble={}", to_string(config.scramble));
       return sobol_points(config.dimension, plan.requested, plan.domain, config.scramble, config.seed, config.threads);
+    case Method::halton:
+      notes = fmt::format("scramble={}", config.scramble == Scramble::owen ? "digit-permutation" : "none");
+      return halton_points(config.dimension, plan.requested, plan.domain, config.scramble == Scramble::owen, config.seed,
+                           config.threads);
+    case Method::lhs:
+      return latin_hypercube_points(config.dimension, plan.requested, plan.domain, config.seed, config.threads);
   }
   throw std::logic_error("unknown method");
 }

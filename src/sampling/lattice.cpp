@@ -14,7 +14,9 @@ Method parse_method(std::string_view name) {
   if (name == "pds") return Method::pds;
   if (name == "sobol") return Method::sobol;
   if (name == "random") return Method::random;
-  throw std::invalid_argument("unknown method " + quote_for_message(name) + " (allowed: cnj, jitter, pds, sobol, random)");
+  if (name == "halton") return Method::halton;
+  if (name == "lhs") return Method::lhs;
+  throw std::invalid_argument("unknown method " + quote_for_message(name) + " (allowed: cnj, jitter, pds, sobol, random, halton, lhs)");
 }
 
 std::string_view to_string(Method method) {
@@ -24,6 +26,8 @@ std::string_view to_string(Method method) {
     case Method::pds: return "pds";
     case Method::sobol: return "sobol";
     case Method::random: return "random";
+    case Method::halton: return "halton";
+    case Method::lhs: return "lhs";
   }
   return "?";
 }

@@ -30,7 +30,7 @@ struct PointSet {
   const double* point(std::size_t i) const { return coordinates.data() + i * dimension; }
 };
 
-enum class Method { cnj, jitter, pds, sobol, random };
+enum class Method { cnj, jitter, pds, sobol, random, halton, lhs };
 Method parse_method(std::string_view name);  // throws std::invalid_argument listing the names
 std::string_view to_string(Method method);
 

@@ -1,5 +1,7 @@
 #include "sampling/sobol.hpp"
 
+#include <algorithm>
+#include <bit>
 #include "core/message_text.hpp"
 
 #include <sstream>
@@ -76,10 +78,12 @@ std::uint32_t reverse_bits(std::uint32_t x) {
   return (x >> 16) | (x << 16);
 }
 
-}  // namespace
+// The key of dimension `dim`'s scramble: one hash per (seed, dimension), hoisted out of point loops.
+std::uint32_t owen_key(std::uint64_t seed, int dim) {
+  return static_cast<std::uint32_t>(random_bits(seed, Stream::sobol_scramble, static_cast<std::uint64_t>(dim)) >> 32);
+}
 
-std::uint32_t owen_scramble(std::uint32_t digits, std::uint64_t seed, int dim) {
-  const auto key = static_cast<std::uint32_t>(random_bits(seed, Stream::sobol_scramble, static_cast<std::uint64_t>(dim)) >> 32);
+std::uint32_t owen_scramble_with_key(std::uint32_t digits, std::uint32_t key) {
   // Burley 2020, "Practical Hash-based Owen Scrambling" (JCGT 9(4)): with the digits bit-reversed, a
   // Laine-Karras permutation (adding the key, then x ^= x * even constant) changes each bit only
   // according to the bits below it, i.e. each original digit according to the digits above it: a
@@ -93,25 +97,45 @@ std::uint32_t owen_scramble(std::uint32_t digits, std::uint64_t seed, int dim) {
   return reverse_bits(x);
 }
 
+}  // namespace
+
+std::uint32_t owen_scramble(std::uint32_t digits, std::uint64_t seed, int dim) {
+  return owen_scramble_with_key(digits, owen_key(seed, dim));
+}
+
 PointSet sobol_points(int dimension, std::uint64_t count, const Box& domain, Scramble scramble, std::uint64_t seed,
                       int threads) {
   if (count > (std::uint64_t{1} << 32)) throw std::invalid_argument("at most 2^32 Sobol points");
   const SobolSequence sequence(dimension);
   PointSet out{dimension, std::vector<double>(count * static_cast<std::uint64_t>(dimension)), domain};
+  // Each block of consecutive points starts from digits() of its first index and then walks the Gray
+  // code: one XOR per coordinate instead of one per set bit of the index.
+  constexpr std::uint64_t kBlock = 4096;
+  const auto blocks = static_cast<std::int64_t>((count + kBlock - 1) / kBlock);
 #pragma omp parallel for schedule(static) num_threads(resolve_threads(threads))
-  for (std::int64_t i = 0; i < static_cast<std::int64_t>(count); ++i) {
-    for (int j = 0; j < dimension; ++j) {
-      std::uint32_t d = sequence.digits(static_cast<std::uint32_t>(i), j);
-      double unit;
-      if (scramble == Scramble::owen) {
-        d = owen_scramble(d, seed, j);
-        const double below = random_unit(seed, Stream::sobol_scramble, static_cast<std::uint64_t>(i),
-                                         static_cast<std::uint64_t>(j) + 1000);
-        unit = (static_cast<double>(d) + below) * 0x1.0p-32;
-      } else {
-        unit = static_cast<double>(d) * 0x1.0p-32;
+  for (std::int64_t block = 0; block < blocks; ++block) {
+    const std::uint64_t begin = static_cast<std::uint64_t>(block) * kBlock;
+    const std::uint64_t end = std::min(count, begin + kBlock);
+    std::array<std::uint32_t, 64> digits{}, keys{};
+    for (int j = 0; j < dimension; ++j) keys[static_cast<std::size_t>(j)] = owen_key(seed, j);
+    for (int j = 0; j < dimension; ++j) digits[static_cast<std::size_t>(j)] = sequence.digits(static_cast<std::uint32_t>(begin), j);
+    for (std::uint64_t i = begin; i < end; ++i) {
+      double* x = out.coordinates.data() + i * static_cast<std::uint64_t>(dimension);
+      for (int j = 0; j < dimension; ++j) {
+        const std::uint32_t d = digits[static_cast<std::size_t>(j)];
+        double unit;
+        if (scramble == Scramble::owen) {
+          const double below = random_unit(seed, Stream::sobol_scramble, i, static_cast<std::uint64_t>(j) + 1000);
+          unit = (static_cast<double>(owen_scramble_with_key(d, keys[static_cast<std::size_t>(j)])) + below) * 0x1.0p-32;
+        } else {
+          unit = static_cast<double>(d) * 0x1.0p-32;
+        }
+        x[j] = domain.lo + domain.side * unit;
       }
-      out.coordinates[static_cast<std::size_t>(i) * dimension + j] = domain.lo + domain.side * unit;
+      if (i + 1 < end) {
+        const int bit = std::countr_zero(i + 1);
+        for (int j = 0; j < dimension; ++j) digits[static_cast<std::size_t>(j)] ^= sequence.direction(j, bit);
+      }
     }
   }
   return out;

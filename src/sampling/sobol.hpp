@@ -26,6 +26,9 @@ class SobolSequence {
   // Points come in Gray-code order (point i uses the direction numbers of the bits of i ^ (i >> 1)),
   // the order of Joe and Kuo's generator and of SciPy; any 2^m first points form the same net.
   std::uint32_t digits(std::uint32_t index, int dim) const;
+  // Direction number v_bit of dimension `dim`: digits(i + 1, dim) = digits(i, dim) ^ direction(dim, ctz(i + 1)),
+  // since the Gray codes of i and i + 1 differ in bit ctz(i + 1) only.
+  std::uint32_t direction(int dim, int bit) const { return directions_[static_cast<std::size_t>(dim)][static_cast<std::size_t>(bit)]; }
 
  private:
   std::vector<std::array<std::uint32_t, kBits>> directions_;

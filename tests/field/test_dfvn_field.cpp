@@ -134,7 +134,9 @@ TYPED_TEST(FieldTest, DivergenceOnUniformRandomPoints) {
     EXPECT_LE(d.divergence_median, 1e-8);
     EXPECT_LE(d.divergence_p95, 1e-6);
   }
-  if (TypeParam::basis != NoiseBasis::simplex) EXPECT_EQ(d.still_points, 0u);
+  if (TypeParam::basis != NoiseBasis::simplex) {
+    EXPECT_EQ(d.still_points, 0u);
+  }
 }
 
 // k_eff measured on the scaled functions f_i equals 2 pi F: a frequency means the same for every basis.

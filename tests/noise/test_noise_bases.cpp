@@ -7,6 +7,7 @@
 #include <numbers>
 #include <vector>
 
+#include "noise/quintic_fade.hpp"
 #include "noise/turning_bands.hpp"
 #include "test_support.hpp"
 

@@ -27,7 +27,9 @@ TEST(CnjStudy, JitterRunsAreMatchedToEachCnjRun) {
     EXPECT_NEAR(r.h_rms * std::sqrt(1.0), r.rms_displacement, 1e-12);
     EXPECT_NEAR(r.h_disorder * std::sqrt(2.0), r.neighbour_disorder, 1e-12);
     const double x = 2 * std::numbers::pi * r.h_order;
-    if (r.lattice_order > 1e-3) EXPECT_NEAR(std::pow(std::sin(x) / x, 2), r.lattice_order, 1e-9);
+    if (r.lattice_order > 1e-3) {
+      EXPECT_NEAR(std::pow(std::sin(x) / x, 2), r.lattice_order, 1e-9);
+    }
     EXPECT_GT(r.cnj.nn_q01, 0.0);
     EXPECT_GE(r.cnj.nn_q01, r.cnj.nn_min);
     EXPECT_GT(r.jitter_rms.nn_q01, 0.0);
@@ -63,7 +65,9 @@ TEST(CnjStudy, ReadingAnswersEveryComparisonAndStatesTheRule) {
   // The rule is a pure function of the rows.
   const auto a = choose_cnj_defaults(result), b = choose_cnj_defaults(result);
   EXPECT_EQ(a.has_value(), b.has_value());
-  if (a) EXPECT_EQ(a->frequency, b->frequency);
+  if (a) {
+    EXPECT_EQ(a->frequency, b->frequency);
+  }
 }
 
 TEST(CnjStudy, RejectsBadConfigurations) {

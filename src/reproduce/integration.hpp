@@ -1,0 +1,62 @@
+// The paper's open question (Section 6.1): does curl noise jittering help to integrate functions in
+// higher dimensions? Every method's point sets integrate Genz's six test families (equal weights,
+// Q = mean of f over the set) and are judged by the RMS relative error over realizations.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "quadrature/genz.hpp"
+#include "reproduce/reproduce.hpp"
+
+namespace dfvn {
+
+struct IntegrationConfig {
+  std::vector<int> dimensions = {3, 4, 5, 6, 7};
+  int realizations = 16;  // seeds s..s+R-1; each draws its own point sets and integrand parameters
+  std::uint64_t seed = 1;
+  int threads = 0;
+  std::uint64_t max_points = 1u << 15;  // the largest lattice K^N per dimension
+  std::vector<Method> methods = {Method::cnj,    Method::jitter, Method::pds, Method::sobol,
+                                 Method::random, Method::halton, Method::lhs};
+  std::string out_dir = "out/integration";
+  void validate() const;  // throws std::invalid_argument naming the option
+};
+
+// The lattice sizes K of one dimension: up to 5 values, roughly evenly spaced in log K^N, from the
+// smallest K with K^N >= 64 to the largest with K^N <= max_points.
+std::vector<int> integration_grids(int dimension, std::uint64_t max_points);
+
+struct IntegrationCell {
+  int dimension = 0;
+  GenzFamily family = GenzFamily::oscillatory;
+  Method method = Method::cnj;
+  int grid = 0;
+  double points = 0.0;              // mean count over realizations (CNJ drops some, PDS places fewer)
+  double rms_relative_error = 0.0;  // sqrt(mean_r ((Q_r - I_r) / I_r)^2)
+  double standard_error = 0.0;      // of the RMS, by the delta method: sd(e^2) / (2 RMS sqrt(R))
+};
+
+struct IntegrationSlope {
+  int dimension = 0;
+  GenzFamily family = GenzFamily::oscillatory;
+  Method method = Method::cnj;
+  double slope = 0.0;  // least-squares slope of log RMS error against log points (random: -1/2)
+};
+
+struct IntegrationResult {
+  IntegrationConfig config;
+  std::vector<IntegrationCell> cells;
+  std::vector<IntegrationSlope> slopes;
+};
+
+IntegrationResult run_integration(const IntegrationConfig& config, const StageProgress& progress = {});
+
+// DIR/integration.csv (the cells), DIR/integration_slopes.csv, DIR/integration.md (tables and a
+// reading) and, with gnuplot, DIR/integration_<N>d.png (scripts/plot_integration.sh). Returns the
+// Markdown.
+std::string write_integration(const IntegrationResult& result, const Log& log);
+std::string integration_markdown(const IntegrationResult& result);
+
+}  // namespace dfvn

@@ -1,0 +1,78 @@
+#include "stats/point_set_statistics.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "core/stopwatch.hpp"
+
+namespace dfvn {
+
+std::vector<double> nearest_neighbour_distances_any_dimension(const PointSet& points, KnnBackend backend, int threads) {
+  if (points.size() < 2) throw std::invalid_argument("nearest-neighbour statistics need at least 2 points");
+  if (points.dimension != 1) return nearest_neighbour_distances(points, backend, threads);
+  // 1D: after sorting, a point's nearest neighbour is the one before or after it.
+  const std::size_t n = points.size();
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return points.coordinates[a] < points.coordinates[b]; });
+  std::vector<double> distances(n);
+  for (std::size_t r = 0; r < n; ++r) {
+    const double x = points.coordinates[order[r]];
+    double best = std::numeric_limits<double>::infinity();
+    if (r > 0) best = std::min(best, x - points.coordinates[order[r - 1]]);
+    if (r + 1 < n) best = std::min(best, points.coordinates[order[r + 1]] - x);
+    distances[order[r]] = best;
+  }
+  return distances;
+}
+
+void check_point_set(const PointSet& points) {
+  if (points.size() < 2) throw std::invalid_argument(fmt::format("the set has {} point(s); at least 2 are needed", points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (int k = 0; k < points.dimension; ++k)
+      if (!points.domain.contains(points.point(i) + k, 1))
+        throw std::invalid_argument(fmt::format(
+            "point {} (0-based) has x{} = {:.17g}, outside the domain [{:g}, {:g}]^{}; give the side with --domain-side", i,
+            k, points.point(i)[k], points.domain.lo, points.domain.lo + points.domain.side, points.dimension));
+}
+
+PointSetStatistics measure_point_set(const PointSet& points, const PointSetStatisticsOptions& options,
+                                     const StatisticsProgress& progress) {
+  check_point_set(points);
+  PointSetStatistics out;
+  Stopwatch stopwatch;
+  if (progress) progress("statistics", 0.0);
+  out.nearest = summarize_nearest_neighbours(nearest_neighbour_distances_any_dimension(points, options.knn, options.threads), points);
+  if (options.discrepancy) {
+    for (std::size_t d = 0; d < std::size(kAllDiscrepancies); ++d) {
+      const DiscrepancyKind kind = kAllDiscrepancies[d];
+      const std::string stage(to_string(kind));
+      out.discrepancies[d] = discrepancy(points, kind, options.threads, [&](double f) {
+        if (progress) progress(stage, f);
+      });
+    }
+  }
+  out.seconds = stopwatch.seconds();
+  return out;
+}
+
+std::string point_statistics_csv_header() {
+  std::string header = "input,set,dim,points,nn_min,nn_median,nn_mean,nn_median_scaled,seconds_stats,domain_side";
+  for (DiscrepancyKind kind : kAllDiscrepancies) header += "," + std::string(csv_column(kind));
+  return header + "\n";
+}
+
+std::string point_statistics_csv_row(std::string_view input, std::string_view set, const PointSet& points,
+                                     const PointSetStatistics& s) {
+  std::string row = fmt::format("\"{}\",{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.6f},{:.9g}", input, set, points.dimension,
+                                s.nearest.points, s.nearest.min, s.nearest.median, s.nearest.mean, s.nearest.median_scaled,
+                                s.seconds, points.domain.side);
+  for (const auto& value : s.discrepancies) row += value ? fmt::format(",{:.17g}", *value) : std::string(",");
+  return row + "\n";
+}
+
+}  // namespace dfvn

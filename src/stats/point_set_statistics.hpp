@@ -1,0 +1,48 @@
+// Every statistic of one point set that came from anywhere (a file, another program): nearest-
+// neighbour summary in 1D-8D and, when asked, the four L2 discrepancies. Used by `dfvn-sample stats`.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sampling/point_set.hpp"
+#include "stats/discrepancy.hpp"
+#include "stats/nearest_neighbour.hpp"
+
+namespace dfvn {
+
+struct PointSetStatisticsOptions {
+  bool discrepancy = false;  // O(n^2): only when asked
+  KnnBackend knn = KnnBackend::nanoflann;
+  int threads = 0;
+};
+
+struct PointSetStatistics {
+  NearestNeighbourSummary nearest;
+  std::array<std::optional<double>, 4> discrepancies;  // indexed like kAllDiscrepancies
+  double seconds = 0.0;
+};
+
+// Nearest-neighbour distances in any dimension >= 1: 1D by sorting (the KD-trees start at 2D),
+// otherwise nearest_neighbour_distances(). Needs at least 2 points.
+std::vector<double> nearest_neighbour_distances_any_dimension(const PointSet& points, KnnBackend backend, int threads);
+
+// Throws std::invalid_argument if a point lies outside points.domain (naming the point and axis) or
+// there are fewer than 2 points.
+void check_point_set(const PointSet& points);
+
+using StatisticsProgress = std::function<void(std::string_view stage, double fraction)>;
+PointSetStatistics measure_point_set(const PointSet& points, const PointSetStatisticsOptions& options,
+                                     const StatisticsProgress& progress = {});
+
+// CSV of `dfvn-sample stats`: input,set,dim,points,nn_min,nn_median,nn_mean,nn_median_scaled,
+// seconds_stats,domain_side,cd,wd,md,l2_star (the discrepancy columns empty unless computed).
+std::string point_statistics_csv_header();
+std::string point_statistics_csv_row(std::string_view input, std::string_view set, const PointSet& points,
+                                     const PointSetStatistics& statistics);
+
+}  // namespace dfvn

@@ -1,0 +1,126 @@
+#include "stats/spectrum.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <iterator>
+#include <numbers>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "core/parallel.hpp"
+#include "io/atomic_file.hpp"
+#include "io/csv.hpp"
+
+namespace dfvn {
+
+double PowerSpectrum::at(const int* k) const {
+  std::size_t index = 0, stride = 1;
+  for (int a = 0; a < dimension; ++a) {
+    index += static_cast<std::size_t>(k[a] + max_frequency) * stride;
+    stride *= static_cast<std::size_t>(2 * max_frequency + 1);
+  }
+  return power[index];
+}
+
+PowerSpectrum power_spectrum(const std::vector<PointSet>& sets, int max_frequency, int threads) {
+  if (sets.empty()) throw std::invalid_argument("power spectrum: no point sets");
+  const int n_dim = sets.front().dimension;
+  if (n_dim != 2 && n_dim != 3) throw std::invalid_argument("power spectrum: only 2D and 3D sets are supported");
+  if (max_frequency < 1) throw std::invalid_argument("power spectrum: the largest frequency must be at least 1");
+  for (const auto& s : sets)
+    if (s.dimension != n_dim || s.size() == 0) throw std::invalid_argument("power spectrum: every set needs the same dimension and a point");
+  PowerSpectrum out;
+  out.dimension = n_dim;
+  out.max_frequency = max_frequency;
+  out.realizations = static_cast<int>(sets.size());
+  const int side = 2 * max_frequency + 1;
+  std::size_t total = 1;
+  for (int a = 0; a < n_dim; ++a) total *= static_cast<std::size_t>(side);
+  out.power.assign(total, 0.0);
+
+  for (const auto& set : sets) {
+    const std::size_t n = set.size();
+    // Unit-cube coordinates times 2 pi, axis-major for the inner loop.
+    std::vector<double> phase_scale(n * static_cast<std::size_t>(n_dim));
+    for (std::size_t j = 0; j < n; ++j)
+      for (int a = 0; a < n_dim; ++a)
+        phase_scale[static_cast<std::size_t>(a) * n + j] =
+            2.0 * std::numbers::pi * (set.point(j)[a] - set.domain.lo) / set.domain.side;
+#pragma omp parallel for schedule(dynamic, 16) num_threads(resolve_threads(threads))
+    for (std::int64_t signed_index = 0; signed_index < static_cast<std::int64_t>(total); ++signed_index) {
+      auto rest = static_cast<std::size_t>(signed_index);
+      int k[3] = {0, 0, 0};
+      for (int a = 0; a < n_dim; ++a) {
+        k[a] = static_cast<int>(rest % static_cast<std::size_t>(side)) - max_frequency;
+        rest /= static_cast<std::size_t>(side);
+      }
+      double re = 0.0, im = 0.0;  // in point order: the same for any thread count
+      for (std::size_t j = 0; j < n; ++j) {
+        double phase = 0.0;
+        for (int a = 0; a < n_dim; ++a) phase += k[a] * phase_scale[static_cast<std::size_t>(a) * n + j];
+        re += std::cos(phase);
+        im -= std::sin(phase);
+      }
+      out.power[static_cast<std::size_t>(signed_index)] += (re * re + im * im) / static_cast<double>(n) / static_cast<double>(sets.size());
+    }
+  }
+
+  // Radial shells and their anisotropy.
+  out.radial_mean.assign(static_cast<std::size_t>(max_frequency) + 1, 0.0);
+  out.anisotropy_db.assign(static_cast<std::size_t>(max_frequency) + 1, 0.0);
+  out.shell_counts.assign(static_cast<std::size_t>(max_frequency) + 1, 0);
+  std::vector<double> squares(static_cast<std::size_t>(max_frequency) + 1, 0.0);
+  for (std::size_t index = 0; index < total; ++index) {
+    std::size_t rest = index;
+    double radius2 = 0.0;
+    for (int a = 0; a < n_dim; ++a) {
+      const int k = static_cast<int>(rest % static_cast<std::size_t>(side)) - max_frequency;
+      rest /= static_cast<std::size_t>(side);
+      radius2 += double(k) * k;
+    }
+    const auto shell = static_cast<std::size_t>(std::lround(std::sqrt(radius2)));
+    if (shell > static_cast<std::size_t>(max_frequency)) continue;  // corners of the cube: incomplete shells
+    out.radial_mean[shell] += out.power[index];
+    squares[shell] += out.power[index] * out.power[index];
+    ++out.shell_counts[shell];
+  }
+  for (std::size_t r = 0; r < out.radial_mean.size(); ++r) {
+    const double count = out.shell_counts[r];
+    out.radial_mean[r] /= count;
+    const double variance = count > 1 ? (squares[r] / count - out.radial_mean[r] * out.radial_mean[r]) * count / (count - 1) : 0.0;
+    out.anisotropy_db[r] = variance > 0.0 ? 10.0 * std::log10(variance / (out.radial_mean[r] * out.radial_mean[r])) : -INFINITY;
+  }
+  return out;
+}
+
+void write_spectrum_files(const std::string& prefix, const PowerSpectrum& spectrum,
+                          const std::function<void(const std::string&)>& log) {
+  const int side = 2 * spectrum.max_frequency + 1;
+  std::string grid = numbered_header("k", spectrum.dimension) + ",power\n";
+  for (std::size_t index = 0; index < spectrum.power.size(); ++index) {
+    std::size_t rest = index;
+    for (int a = 0; a < spectrum.dimension; ++a) {
+      fmt::format_to(std::back_inserter(grid), "{},", static_cast<int>(rest % static_cast<std::size_t>(side)) - spectrum.max_frequency);
+      rest /= static_cast<std::size_t>(side);
+    }
+    fmt::format_to(std::back_inserter(grid), "{:.9g}\n", spectrum.power[index]);
+  }
+  std::string radial = "frequency,power,anisotropy_db,frequencies\n";
+  for (std::size_t r = 1; r < spectrum.radial_mean.size(); ++r)
+    fmt::format_to(std::back_inserter(radial), "{},{:.9g},{:.6g},{}\n", r, spectrum.radial_mean[r], spectrum.anisotropy_db[r],
+                   spectrum.shell_counts[r]);
+  write_file_atomically(prefix + ".csv", grid);
+  write_file_atomically(prefix + "_radial.csv", radial);
+  const std::filesystem::path script = std::filesystem::path(DFVN_SOURCE_DIR) / "scripts" / "plot_spectrum.sh";
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
+    log(fmt::format("{}.png not written: gnuplot is not installed (apt-get install gnuplot-nox; then bash {} {})", prefix,
+                    script.string(), prefix));
+    return;
+  }
+  const std::string command = fmt::format("bash '{}' '{}' {}", script.string(), prefix, spectrum.dimension);
+  if (std::system(command.c_str()) != 0) log(fmt::format("{}.png not written: '{}' failed", prefix, command));
+}
+
+}  // namespace dfvn

@@ -1,0 +1,41 @@
+// Power spectrum of 2D and 3D point sets (as pbrt-v4's pspec and UTK's Spectrum/RadialSpectrum): the
+// periodogram P(k) = |sum_j exp(-2 pi i k . x_j)|^2 / n on integer frequencies k of the unit torus,
+// averaged over realizations, its radial average and anisotropy.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "sampling/point_set.hpp"
+
+namespace dfvn {
+
+struct PowerSpectrum {
+  int dimension = 2;
+  int max_frequency = 0;  // k in [-K, K]^N
+  int realizations = 0;
+  // (2K+1)^N values, axis 0 fastest: index sum_a (k_a + K) (2K+1)^a. P(0) = n (the DC term).
+  std::vector<double> power;
+  double at(const int* k) const;
+
+  // Radial average over shells |k| in [r - 1/2, r + 1/2), r = 1..K (the shell 0 is the DC term).
+  std::vector<double> radial_mean;
+  // Anisotropy per shell: 10 log10(var / mean^2) of P over the shell (Lagae and Dutre 2008), in dB;
+  // for a periodogram of random points about 0 dB (an exponential variable has var = mean^2).
+  std::vector<double> anisotropy_db;
+  std::vector<int> shell_counts;
+};
+
+// Averages the periodograms of `sets` (each with the same dimension, 2 or 3, mapped from its domain to
+// the unit cube). OpenMP-parallel over frequencies; independent of the thread count. Throws
+// std::invalid_argument for other dimensions, an empty list or max_frequency < 1.
+PowerSpectrum power_spectrum(const std::vector<PointSet>& sets, int max_frequency, int threads);
+
+// PREFIX.csv: k0,..,k{N-1},power for every frequency; PREFIX_radial.csv: frequency,power,anisotropy_db,
+// frequencies (the shell's count). Then PREFIX.png through scripts/plot_spectrum.sh when gnuplot is
+// installed (otherwise `log` says how to get it).
+void write_spectrum_files(const std::string& prefix, const PowerSpectrum& spectrum,
+                          const std::function<void(const std::string&)>& log);
+
+}  // namespace dfvn
