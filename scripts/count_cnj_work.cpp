@@ -4,11 +4,16 @@
 // it under callgrind at two sizes; the difference in instructions / difference in points is the
 // measured cost per point, to set against the floor.
 //
-// Floor, in arithmetic operations (floating-point operations plus the integer multiplies and mixes
-// of the hash), counted from the algorithm, with every one of the N+1 simplex vertices inside the
-// kernel (an upper floor: vertices outside the kernel cost only their offset and distance):
-//   noise, per evaluation: skew and floor 4N; per vertex: offset update 2N, |d|^2 2N, kernel powers 4,
-//     hash N multiplies + N adds + mix64 (4); per vertex and function: g.d N-1, value 2, gradient 3N+1.
+// Floor, in arithmetic operations (floating-point operations plus the integer multiplies, adds,
+// shifts and xors of the hashes), counted from the algorithm.
+// Turning bands (the default basis), B = 2N(N-1) bands: per band the coordinate w.x + o 2N, floor 3,
+//   offset in the cell 2, two knot slopes (odd multiply and add, mix64's 3 shifts, 3 xors and 2
+//   multiplies, conversion and scaling: 12 each, plus the next knot 1) 25, fade 7, fade slope 4, value
+//   7, slope 9; per function the value sum K and the gradient W_i^T p' 2NK plus N for the 1/sqrt(K).
+// Simplex, with every one of the N+1 vertices inside the kernel (an upper floor: vertices outside the
+//   kernel cost only their offset and distance): skew and floor 4N; per vertex: offset update 2N,
+//   |d|^2 2N, kernel powers 4, hash N multiplies + N adds + mix64 (4); per vertex and function: g.d N-1,
+//   value 2, gradient 3N+1.
 //   field: scaling 2N(N-1); cross product: LU of N x (N-1), sum_k 2(N-1-k)(N-k) + N pivot divisions,
 //     back substitution (N-1)N, output N.
 //   RK4 combination 10N per step; Gauss-Newton update: Householder QR of N x (N-1), about
@@ -24,13 +29,19 @@ namespace {
 
 constexpr int N = 7;
 
-double floor_per_evaluation() {
-  const double per_vertex = 2 * N + 2 * N + 4 + (2 * N + 4);
-  const double per_function = (N - 1) + 2 + (3 * N + 1);
+double floor_per_evaluation(dfvn::NoiseBasis basis) {
   double lu = N;
   for (int k = 0; k < N - 1; ++k) lu += 2.0 * (N - 1 - k) * (N - k);
   const double cross = lu + (N - 1) * N + N;
-  return 4 * N + (N + 1) * (per_vertex + (N - 1) * per_function) + 2 * N * (N - 1) + cross;
+  const double field = N + 2 * N * (N - 1) + cross;  // s x, scaling of values and gradients, cross product
+  if (basis == dfvn::NoiseBasis::turning_bands) {
+    const double bands = 2.0 * N * (N - 1), per_band = 2 * N + 3 + 2 + 25 + 7 + 4 + 7 + 9;
+    const double per_function = 2.0 * N + 2.0 * N * (2 * N) + N;
+    return bands * per_band + (N - 1) * per_function + field;
+  }
+  const double per_vertex = 2 * N + 2 * N + 4 + (2 * N + 4);
+  const double per_function = (N - 1) + 2 + (3 * N + 1);
+  return 4 * N + (N + 1) * (per_vertex + (N - 1) * per_function) + field;
 }
 
 double floor_per_update() {
@@ -42,12 +53,13 @@ double floor_per_update() {
 
 int main(int argc, char** argv) {
   const long points = argc > 1 ? std::atol(argv[1]) : 10000;
+  dfvn::CnjOptions options;
+  if (argc > 2) options.noise = dfvn::parse_noise_basis(argv[2]);
   const dfvn::LatticeSpec lattice{N, 6, dfvn::Protocol::paper};
   if (points < 1 || points > static_cast<long>(lattice.point_count())) {
-    std::fprintf(stderr, "usage: count_cnj_work [points in 1..%llu]\n", static_cast<unsigned long long>(lattice.point_count()));
+    std::fprintf(stderr, "usage: count_cnj_work [points in 1..%llu] [noise basis]\n", static_cast<unsigned long long>(lattice.point_count()));
     return 2;
   }
-  const dfvn::CnjOptions options;
   const double time = options.step_scale * dfvn::average_neighbour_distance(N) * lattice.spacing();
   const dfvn::DfvnField<N> field(1, dfvn::FieldOptions{options.noise, options.frequency / lattice.spacing()});
   const dfvn::Tracer<N> tracer(field, options.trace);
@@ -61,9 +73,9 @@ int main(int argc, char** argv) {
   const auto per_point = [&](std::int64_t count) { return static_cast<double>(count) / static_cast<double>(points); };
   const double evaluations = per_point(stats.field_evaluations);
   const double updates = per_point(stats.reprojection_updates + stats.skipped_updates);
-  const double floor = evaluations * floor_per_evaluation() + updates * floor_per_update() + 10 * N;
+  const double floor = evaluations * floor_per_evaluation(options.noise) + updates * floor_per_update() + 10 * N;
   std::printf("points %ld\nfield_evaluations_per_point %.4f\nreprojection_updates_per_point %.4f\n"
               "floor_ops_per_evaluation %.0f\nfloor_ops_per_update %.0f\nfloor_ops_per_point %.0f\nchecksum %.17g\n",
-              points, evaluations, updates, floor_per_evaluation(), floor_per_update(), floor, checksum);
+              points, evaluations, updates, floor_per_evaluation(options.noise), floor_per_update(), floor, checksum);
   return 0;
 }

@@ -34,6 +34,8 @@ std::vector<int> parse_dimension_list(std::string_view text);
 struct Table1Result {
   std::vector<SampleConfig> configs;               // one per dimension
   std::vector<std::vector<MethodResult>> results;  // per dimension, per method (cnj, jitter, pds, sobol)
+  // Per dimension: CNJ with the paper's construction (simplex noise), beside ours (the default basis).
+  std::vector<MethodResult> simplex_cnj;
 };
 
 Table1Result run_table1(const Table1Config& config, const StageProgress& progress = {});

@@ -74,6 +74,13 @@ Table1Result run_table1(const Table1Config& config, const StageProgress& progres
     result.results.push_back(run_sampling(c, false, [&](std::string_view stage, double f) {
       if (progress) progress(fmt::format("{}D {}", dimension, stage), f);
     }));
+    SampleConfig paper_construction = c;
+    paper_construction.methods = {Method::cnj};
+    paper_construction.cnj.noise = NoiseBasis::simplex;
+    paper_construction.compute_rdf = false;
+    result.simplex_cnj.push_back(run_sampling(paper_construction, false, [&](std::string_view stage, double f) {
+      if (progress) progress(fmt::format("{}D simplex {}", dimension, stage), f);
+    }).front());
     result.configs.push_back(c);
   }
   return result;
@@ -111,7 +118,7 @@ std::string table1_markdown(const Table1Result& result) {
         "(Python on an Apple M1 Max, single runs); **ours** is dfvn-sample on this machine, with the number of "
         "points. Paper protocol (PROTOCOL.md): lattice linspace(0.05, 0.95, K), jitter +-0.05, PDS radius 0.1 and "
         "Sobol on [0, 0.1K]^n.\n\n";
-  md += "| n | K | CNJ | Jittering | PDS | Sobol |\n| --- | --- | --- | --- | --- | --- |\n";
+  md += "| n | K | CNJ | CNJ (simplex) | Jittering | PDS | Sobol |\n| --- | --- | --- | --- | --- | --- | --- |\n";
   for (std::size_t d = 0; d < result.configs.size(); ++d) {
     const int n = result.configs[d].dimension;
     md += fmt::format("| {} | {} |", n, result.configs[d].grid);
@@ -124,6 +131,11 @@ std::string table1_markdown(const Table1Result& result) {
         cell += fmt::format("ours {:.3f} ({:.3f}):{:.2g}<br>{} pts", r->nearest.median, r->nearest.min,
                             r->seconds_generate + r->seconds_stats, r->nearest.points);
       md += " " + cell + " |";
+      if (m == Method::cnj && d < result.simplex_cnj.size()) {
+        const MethodResult& s = result.simplex_cnj[d];
+        md += fmt::format(" ours {:.3f} ({:.3f}):{:.2g}<br>{} pts |", s.nearest.median, s.nearest.min,
+                          s.seconds_generate + s.seconds_stats, s.nearest.points);
+      }
     }
     md += "\n";
   }
@@ -175,13 +187,28 @@ std::string table1_markdown(const Table1Result& result) {
   const CnjOptions& o = result.configs.empty() ? CnjOptions{} : result.configs.front().cnj;
   md += fmt::format(
       "- **CNJ** (ours vs paper, median (min)): {}. The paper's step constant and noise frequency are not "
-      "published, so our row uses our documented defaults (step scale {:g}, frequency {:g} cycles per lattice "
-      "spacing, chosen by scripts/sweep_cnj.py; data/cnj_sweep.md). Our noise is C2 (kernel radius^2 = 1/2, the "
-      "largest that keeps simplex noise continuous); the paper's Python port uses 0.70-0.82 and is discontinuous. "
-      "With the C2 kernel the field's speed is very uneven from 4D on (median |c| / RMS |c| = 0.07 in 4D, 1e-14 "
-      "in 7D): most points barely move, so in 6D-7D our CNJ median stays at the lattice spacing (0.15, 0.18) while "
-      "a few fast points set the minimum.\n",
-      cnj, o.step_scale, o.frequency);
+      "published, so our row uses our defaults ({} noise, step scale {:g}, frequency {:g} cycles per lattice "
+      "spacing, chosen by the rule of `reproduce cnj-study`; data/cnj_defaults.md).\n",
+      cnj, to_string(o.noise), o.step_scale, o.frequency);
+  // Which construction moved points, and how far (displacements over every traced point, in spacings).
+  std::string moved;
+  for (std::size_t d = 0; d < result.configs.size() && d < result.simplex_cnj.size(); ++d) {
+    const MethodResult* ours = find(result.results[d], Method::cnj);
+    const MethodResult& simplex = result.simplex_cnj[d];
+    if (!ours || !ours->displacement || !simplex.displacement) continue;
+    const double a = result.configs[d].lattice().spacing();
+    moved += fmt::format("{}{}D: {} {:.1f}% unmoved, median move {:.3f}, RMS {:.3f}; simplex {:.1f}% unmoved, median "
+                         "{:.2g}, RMS {:.3f}",
+                         moved.empty() ? "" : "; ", result.configs[d].dimension, to_string(o.noise),
+                         100.0 * ours->displacement->fraction_unmoved, ours->displacement->median / a,
+                         ours->displacement->rms / a, 100.0 * simplex.displacement->fraction_unmoved,
+                         simplex.displacement->median / a, simplex.displacement->rms / a);
+  }
+  if (!moved.empty())
+    md += "- **Which construction moves the points** (\"unmoved\": less than 1% of a spacing; moves in lattice "
+          "spacings, over every traced point): " + moved + ". The paper's construction (simplex noise, C2 kernel, one "
+          "shared traversal) leaves a field that is nearly still in most of space from 4D on, so most of its points "
+          "stay on their lattice sites and a few move far; ours moves every point by a comparable amount.\n";
   md += "- **Densities differ in 6D and 7D**: CNJ and jittering sit on the 7^6 / 6^7 lattice of spacing 0.15 / "
         "0.18 in [0,1]^n, while PDS and Sobol fill [0,0.7]^6 / [0,0.6]^7 at the density of a 0.1-spaced lattice, as "
         "in the paper. Their raw medians are not comparable there; nn_median_scaled in table1.csv (median x "
@@ -208,10 +235,13 @@ std::string write_table1(const Table1Config& config, const Table1Result& result,
   const std::string dir = config.out_dir;
   std::string stats = stats_csv_header(), rdf = rdf_csv_header();
   for (std::size_t d = 0; d < result.configs.size(); ++d)
+  {
     for (const auto& r : result.results[d]) {
       stats += stats_csv_row(result.configs[d], r);
       rdf += rdf_csv_rows(result.configs[d], r);
     }
+    if (d < result.simplex_cnj.size()) stats += stats_csv_row(result.configs[d], result.simplex_cnj[d]);  // notes: noise=simplex
+  }
   const std::string md = table1_markdown(result);
   for (const auto& [name, text] : {std::pair{"table1.csv", stats}, {"rdf.csv", rdf}, {"table1.md", md}})
     write_file_atomically((std::filesystem::path(dir) / name).string(), text);

@@ -18,8 +18,10 @@ struct CnjOptions {
   // neighbour distance). |c| has RMS 1, so t is also the RMS length of a one-step move.
   // Noise frequency in cycles per lattice spacing (FieldOptions::frequency): the field's frequency is
   // frequency / spacing.
+  // Defaults: the choice of choose_cnj_defaults (reproduce/cnj_study.hpp) on `reproduce cnj-study
+  // --seeds 5`, recorded in data/cnj_defaults.md.
   NoiseBasis noise = kDefaultNoiseBasis;
-  double step_scale = 0.35;
+  double step_scale = 0.5;
   double frequency = 0.2;
   // A move of 2^20 lattice spacings is far past any useful jitter (a point moved more than K
   // spacings has left the unit cube unless its streamline loops); the bound keeps every
