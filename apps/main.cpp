@@ -425,6 +425,7 @@ struct ReproduceCommand {
   dfvn::Table2Config table2;
   std::string setting = "shader";
   double frequency = 0.0, field_magnitude = 0.0;  // 0: the setting's
+  CLI::Option* second_width_option = nullptr;
   bool quiet = false;
 
   void add_to(CLI::App& parent) {
@@ -456,9 +457,9 @@ struct ReproduceCommand {
         ->check(CLI::IsMember({"shader", "ours"}));
     t2->add_option("--width", warp.width, "Image width in pixels")->capture_default_str()->check(CLI::Range(2, 20000));
     t2->add_option("--height", warp.height, "Image height in pixels")->capture_default_str()->check(CLI::Range(2, 20000));
-    t2->add_option("--second-width", table2.second_width,
-                   "Width of the second resolution (same aspect ratio) at which every RMSE is measured again; 0 = none")
-        ->capture_default_str()
+    second_width_option = t2->add_option("--second-width", table2.second_width,
+                   "Width of the second resolution (same aspect ratio) at which every RMSE is measured again; 0 = none;\n"
+                   "default: half of --width (none when that is below 2 pixels a side)")
         ->check(CLI::Range(0, 20000));
     t2->add_option("--samples", warp.samples, "Samples per pixel, a perfect square (m x m sub-pixel grid, averaged)")
         ->capture_default_str()
@@ -564,6 +565,10 @@ struct ReproduceCommand {
     config.samples = warp.samples;
     if (frequency > 0.0) config.frequency = frequency;
     if (field_magnitude > 0.0) config.field_magnitude = field_magnitude;
+    if (second_width_option->count() == 0) {
+      const int half = config.width / 2;
+      table2.second_width = (half >= 2 && static_cast<long long>(half) * config.height / config.width >= 2) ? half : 0;
+    }
     config.seed = common2.seed;
     config.threads = common2.threads;
     table2.validate();

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "sampling/curl_noise_jitter.hpp"
+
 #include <cmath>
 #include <numbers>
 
@@ -14,8 +16,8 @@ CnjStudyResult reduced_study() {
   CnjStudyConfig config;
   config.dimensions = {3};
   config.seeds = 1;
-  config.frequencies = {0.2, 1.0};
-  config.step_scales = {0.35};
+  config.frequencies = {CnjOptions{}.frequency, 1.0};  // the default, and a high frequency
+  config.step_scales = {CnjOptions{}.step_scale};
   return run_cnj_study(config);
 }
 
@@ -38,8 +40,9 @@ TEST(CnjStudy, JitterRunsAreMatchedToEachCnjRun) {
       EXPECT_GE(r.median_over_rms, 0.5);
       // The step scale sets the trace time t = C dbar(3) spacing; with RMS |c| = 1 the move is at most
       // about t (a curved path or a field weaker than its RMS in this small box makes it shorter).
-      EXPECT_GT(r.rms_displacement, 0.3 * 0.35 * 1.4164);
-      EXPECT_LT(r.rms_displacement, 1.5 * 0.35 * 1.4164);
+      const double t = r.step_scale * 1.4164;  // dbar(3) = 1.4164
+      EXPECT_GT(r.rms_displacement, 0.3 * t);
+      EXPECT_LT(r.rms_displacement, 1.5 * t);
     }
   }
   // Lower frequency = more coherent motion: neighbours move more alike relative to how far they move
@@ -49,8 +52,8 @@ TEST(CnjStudy, JitterRunsAreMatchedToEachCnjRun) {
       if (r.basis == NoiseBasis::turning_bands && r.frequency == f) return r.neighbour_disorder / r.rms_displacement;
     return -1.0;
   };
-  EXPECT_LT(coherence(0.2), coherence(1.0));
-  EXPECT_LT(coherence(0.2), std::sqrt(2.0));
+  EXPECT_LT(coherence(CnjOptions{}.frequency), coherence(1.0));
+  EXPECT_LT(coherence(CnjOptions{}.frequency), std::sqrt(2.0));
   EXPECT_EQ(result.jitter_curve.size(), 12u);
 }
 
