@@ -426,6 +426,7 @@ struct ReproduceCommand {
   std::string setting = "shader";
   double frequency = 0.0, field_magnitude = 0.0;  // 0: the setting's
   CLI::Option* second_width_option = nullptr;
+  std::string table1_noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
   bool quiet = false;
 
   void add_to(CLI::App& parent) {
@@ -438,6 +439,7 @@ struct ReproduceCommand {
         "Writes DIR/table1.csv, DIR/rdf.csv, DIR/table1.md and (with gnuplot) DIR/figure4.png; prints table1.md.");
     t1->add_option("--out", out1, "Output directory")->capture_default_str();
     t1->add_option("--dims", dims, "Dimensions: a range or list within 3..7, e.g. 3-7 or 3,5")->capture_default_str();
+    add_noise_option(*t1, table1_noise);  // the CNJ column; the simplex column is always shown beside it
     t1->add_flag("--quiet", quiet, "No progress on stderr");
     add_common_options(*t1, common1);
     t1->callback([this] { run_table1(); });
@@ -546,6 +548,7 @@ struct ReproduceCommand {
   void run_table1() {
     dfvn::Table1Config config;
     config.dimensions = dfvn::parse_dimension_list(dims);
+    config.cnj.noise = dfvn::parse_noise_basis(table1_noise);
     config.seed = common1.seed;
     config.threads = common1.threads;
     config.out_dir = out1;

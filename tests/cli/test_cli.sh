@@ -82,6 +82,8 @@ awk -F, '$3 == "cnj" || $3 == "jitter" { if ($10 == "" || $14 == "") exit 1 } $3
 "$bin" field --diagnose --dim 4 --noise turning-bands --diagnose-points 2000 >"$work/d.csv" 2>"$work/err" &&
   [[ $(wc -l <"$work/d.csv") -eq 2 ]] && head -1 "$work/d.csv" | grep -q "^dim,noise,frequency" && ok || bad "field --diagnose: $(cat "$work/err")"
 expect_error "unknown noise basis" "" field --dim 3 --noise perlin9
+"$bin" reproduce table1 --help 2>&1 | grep -q -- "--noise" && "$bin" sample --help 2>&1 | grep -q -- "--noise" && ok ||
+  bad "--noise on reproduce table1 and sample"
 [[ $(wc -l <"$work/s.csv") -eq 5 ]] && ok || bad "stats rows (cnj, jitter, pds, sobol)"
 "$bin" --help >"$work/out" 2>&1 && grep -q -- "--step-scale" "$work/out" && grep -q -- "--protocol" "$work/out" && ok || bad "sample --help"
 expect_error "sample dim" "" --dim 9 --grid 4
