@@ -2,6 +2,7 @@
 
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -37,7 +38,7 @@ void DfvnField<N>::check_in_domain(const Vec<N>& x, std::string_view what) const
 }
 
 template <int N>
-FieldSample<N> DfvnField<N>::evaluate(const Vec<N>& x) const {
+FieldSample<N> DfvnField<N>::evaluate_functions(const Vec<N>& x) const {
   const NoiseSample<N, N - 1> noise = noise_->evaluate(scale_ * x);
   FieldSample<N> out;
   const double value_scale = amplitude_ / scale_;
@@ -45,6 +46,13 @@ FieldSample<N> DfvnField<N>::evaluate(const Vec<N>& x) const {
     out.value[i] = value_scale * noise.value[i];
     out.gradient[i] = amplitude_ * noise.gradient[i];
   }
+  out.velocity.setConstant(std::numeric_limits<double>::quiet_NaN());
+  return out;
+}
+
+template <int N>
+FieldSample<N> DfvnField<N>::evaluate(const Vec<N>& x) const {
+  FieldSample<N> out = evaluate_functions(x);
   out.velocity = cross<N>(out.gradient);  // Eq. (8)
   return out;
 }

@@ -45,6 +45,9 @@ class DfvnField {
   // evaluate(x) needs x in the noise domain (every |F x_j| < 2^50); callers check their points before
   // evaluating, with in_domain or check_in_domain (which throws std::invalid_argument naming `what`).
   FieldSample<N> evaluate(const Vec<N>& x) const;
+  // The f_i and their gradients only, for reprojection, which needs no velocity: the velocity is
+  // left NaN, and cross<N>(gradient) gives it later, bit for bit as evaluate would have.
+  FieldSample<N> evaluate_functions(const Vec<N>& x) const;
   bool in_domain(const Vec<N>& x) const;
   void check_in_domain(const Vec<N>& x, std::string_view what) const;
   Vec<N> velocity(const Vec<N>& x) const { return evaluate(x).velocity; }

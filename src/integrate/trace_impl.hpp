@@ -3,11 +3,12 @@
 // ASan + UBSan the single-file version took over two minutes and dominated the build.
 #pragma once
 
-#include <Eigen/QR>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
+#include "field/cross_product.hpp"
+#include "integrate/min_norm_step.hpp"
 #include "integrate/trace.hpp"
 #include "noise/noise_domain.hpp"
 
@@ -25,7 +26,11 @@ double iso_residual(const FieldSample<N>& sample, const std::array<double, N - 1
 // a zero field with NaN values: the point stops moving there, and every reprojection update across
 // the edge is rejected (a NaN residual never compares as an improvement). So the noise is never
 // evaluated outside its domain, and the returned points stay finite.
-template <int N>
+// With Velocity::skip only the f_i and their gradients are computed (the reprojection's evaluations:
+// the cross product was a third of their cost in 7D); the velocity is then NaN inside the domain.
+enum class Velocity { compute, skip };
+
+template <int N, Velocity V = Velocity::compute>
 FieldSample<N> evaluate_counted(const DfvnField<N>& field, const Vec<N>& x, TraceStats& stats) {
   ++stats.field_evaluations;
   if (!field.in_domain(x)) [[unlikely]] {
@@ -36,6 +41,7 @@ FieldSample<N> evaluate_counted(const DfvnField<N>& field, const Vec<N>& x, Trac
     for (Vec<N>& gradient : outside.gradient) gradient.setZero();
     return outside;
   }
+  if constexpr (V == Velocity::skip) return field.evaluate_functions(x);
   return field.evaluate(x);
 }
 
@@ -44,7 +50,7 @@ template <Reprojection R>
 FieldSample<N> Tracer<N>::reproject_with(const Tracer& self, Vec<N>& x, const std::array<double, N - 1>& tau,
                                          double max_update, TraceStats& stats) {
   const TraceOptions& o = self.options_;
-  FieldSample<N> sample = evaluate_counted(self.field_, x, stats);
+  FieldSample<N> sample = evaluate_counted<N, Velocity::skip>(self.field_, x, stats);
   double residual_now = iso_residual<N>(sample, tau);
   // Takes x + step unless it is too long or raises the residual; false when it was not taken.
   auto try_update = [&](const Vec<N>& step) {
@@ -53,7 +59,7 @@ FieldSample<N> Tracer<N>::reproject_with(const Tracer& self, Vec<N>& x, const st
       return false;
     }
     const Vec<N> candidate = x + step;
-    FieldSample<N> moved = evaluate_counted(self.field_, candidate, stats);
+    FieldSample<N> moved = evaluate_counted<N, Velocity::skip>(self.field_, candidate, stats);
     const double residual_moved = iso_residual<N>(moved, tau);
     if (!(residual_moved <= residual_now)) {
       ++stats.skipped_updates;
@@ -66,31 +72,16 @@ FieldSample<N> Tracer<N>::reproject_with(const Tracer& self, Vec<N>& x, const st
     return true;
   };
   if constexpr (R == Reprojection::gauss_newton) {
-    using JacobianT = Eigen::Matrix<double, N, N - 1>;  // J^T: column i is grad f_i
     for (int iteration = 0; iteration < o.reproject_iterations; ++iteration) {
       if (residual_now <= o.residual_tolerance) break;
-      JacobianT jacobian_t;
-      Eigen::Matrix<double, N - 1, 1> residual;
-      for (int i = 0; i < N - 1; ++i) {
-        jacobian_t.col(i) = sample.gradient[i];
-        residual[i] = tau[i] - sample.value[i];
-      }
-      // Eq. (10)-(11): minimum-norm solution of J v = tau - f(x). With the pivoted QR
-      // J^T P = Q [R1; 0], the minimum-norm v lies in range(J^T) = range(Q1): v = Q1 w with
-      // R1^T w = P^T (tau - f(x)).
-      const Eigen::ColPivHouseholderQR<JacobianT> qr(jacobian_t);
-      const auto r = qr.matrixQR().template topLeftCorner<N - 1, N - 1>().template triangularView<Eigen::Upper>();
-      const double largest = std::abs(qr.matrixQR()(0, 0));
-      const double smallest = std::abs(qr.matrixQR()(N - 2, N - 2));
-      if (!(smallest > 0.0) || largest > o.max_condition * smallest) {
+      std::array<double, N - 1> residual;
+      for (int i = 0; i < N - 1; ++i) residual[i] = tau[i] - sample.value[i];
+      // Eq. (10)-(11): the minimum-norm solution of J v = tau - f(x), J's rows the gradients.
+      Vec<N> step;
+      if (!min_norm_step<N>(sample.gradient, residual, o.max_condition, step)) {
         ++stats.skipped_updates;  // rank deficient or ill-conditioned: keep x as it is
         break;
       }
-      Eigen::Matrix<double, N - 1, 1> w = qr.colsPermutation().transpose() * residual;
-      r.transpose().solveInPlace(w);
-      Vec<N> step = Vec<N>::Zero();
-      step.template head<N - 1>() = w;
-      step = qr.householderQ() * step;
       if (!try_update(step)) break;
     }
   } else if constexpr (R == Reprojection::newton) {
@@ -111,7 +102,7 @@ FieldSample<N> Tracer<N>::reproject_with(const Tracer& self, Vec<N>& x, const st
           continue;
         }
         const Vec<N> candidate = x + step;
-        FieldSample<N> moved = evaluate_counted(self.field_, candidate, stats);
+        FieldSample<N> moved = evaluate_counted<N, Velocity::skip>(self.field_, candidate, stats);
         if (!(std::abs(moved.value[i] - tau[i]) <= std::abs(error))) {
           ++stats.skipped_updates;
           continue;
@@ -123,7 +114,7 @@ FieldSample<N> Tracer<N>::reproject_with(const Tracer& self, Vec<N>& x, const st
       residual_now = iso_residual<N>(sample, tau);
     }
   }
-  return sample;
+  return sample;  // its velocity is not computed: the callers that need it take cross<N>(gradient)
 }
 
 template <int N>
@@ -153,6 +144,8 @@ Vec<N> Tracer<N>::trace_with(const Tracer& self, const Vec<N>& x0, double time, 
       // The reprojection ends with an evaluation at the projected point: it is the next k1.
       const double max_update = self.options_.max_update_ratio * (x - before_step).norm();
       current = reproject_with<R>(self, x, tau, max_update, stats);
+      // The velocity at the projected point is the next k1; after the last step nobody needs it.
+      if (!last) current.velocity = cross<N>(current.gradient);
     }
   }
   return x;
@@ -192,6 +185,7 @@ FieldSample<N> Tracer<N>::reproject(Vec<N>& x, const std::array<double, N - 1>& 
                                     double max_update) const {
   TraceStats local;
   FieldSample<N> sample = reproject_(*this, x, tau, max_update, local);
+  sample.velocity = cross<N>(sample.gradient);  // zero outside the noise domain, whose gradients are zero
   if (stats) *stats += local;
   return sample;
 }

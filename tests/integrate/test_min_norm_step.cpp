@@ -1,0 +1,67 @@
+#include "integrate/min_norm_step.hpp"
+
+#include <Eigen/Dense>
+
+#include "test_support.hpp"
+
+namespace dfvn {
+namespace {
+
+template <typename D>
+class MinNormStep : public ::testing::Test {};
+TYPED_TEST_SUITE(MinNormStep, testing::AllDimensions);
+
+constexpr std::uint64_t kSeed = 77;
+
+template <int N>
+std::array<Vec<N>, N - 1> random_rows(std::uint64_t index) {
+  std::array<Vec<N>, N - 1> rows;
+  for (int i = 0; i < N - 1; ++i) rows[i] = testing::random_point<N>(kSeed, index * 16 + i, -1.0, 1.0);
+  return rows;
+}
+
+// Against an independent minimum-norm solution: Eigen's complete orthogonal decomposition, v = J^+ r.
+TYPED_TEST(MinNormStep, EqualsThePseudoInverseSolution) {
+  constexpr int N = TypeParam::value;
+  for (std::uint64_t k = 0; k < 200; ++k) {
+    const auto rows = random_rows<N>(k);
+    std::array<double, N - 1> r;
+    Eigen::Matrix<double, N - 1, N> jacobian;
+    Eigen::Matrix<double, N - 1, 1> rhs;
+    for (int i = 0; i < N - 1; ++i) {
+      r[i] = testing::random_point<2>(kSeed + 1, k * 16 + i, -1.0, 1.0)[0];
+      jacobian.row(i) = rows[i].transpose();
+      rhs[i] = r[i];
+    }
+    Vec<N> step;
+    ASSERT_TRUE(min_norm_step<N>(rows, r, 1e8, step));
+    const Vec<N> expected = jacobian.completeOrthogonalDecomposition().solve(rhs);
+    EXPECT_LT((step - expected).norm(), 1e-10 * (1.0 + expected.norm())) << "N = " << N << ", case " << k;
+    // It solves the system and is orthogonal to the null space (it lies in the row space).
+    EXPECT_LT((jacobian * step - rhs).norm(), 1e-10 * (1.0 + rhs.norm()));
+  }
+}
+
+TYPED_TEST(MinNormStep, RefusesRankDeficientAndIllConditionedSystems) {
+  constexpr int N = TypeParam::value;
+  std::array<double, N - 1> r;
+  r.fill(1.0);
+  Vec<N> step = Vec<N>::Constant(42.0);
+  auto rows = random_rows<N>(1);
+  rows[N - 2] = Vec<N>::Zero();  // a zero gradient
+  EXPECT_FALSE(min_norm_step<N>(rows, r, 1e8, step));
+  if constexpr (N > 2) {
+    rows = random_rows<N>(2);
+    rows[N - 2] = rows[0] * 3.0;  // two parallel gradients
+    EXPECT_FALSE(min_norm_step<N>(rows, r, 1e8, step));
+    rows[N - 2] = rows[0] + Vec<N>::Constant(1e-10);  // nearly parallel: condition ~1e10
+    EXPECT_FALSE(min_norm_step<N>(rows, r, 1e8, step));
+    EXPECT_TRUE(min_norm_step<N>(rows, r, 1e12, step));
+  }
+  rows = random_rows<N>(3);
+  EXPECT_TRUE(min_norm_step<N>(rows, r, 1e8, step));
+  EXPECT_NE(step[0], 42.0);
+}
+
+}  // namespace
+}  // namespace dfvn
