@@ -38,12 +38,16 @@ enum class Stream : std::uint64_t {
   test = 99,
 };
 
-// A 64-bit random word for (seed, stream, index, lane).
+// The key of (seed, stream); loops that draw many numbers of one stream hash it once.
+constexpr std::uint64_t stream_key(std::uint64_t seed, Stream stream) {
+  return hash_combine(mix64(seed), static_cast<std::uint64_t>(stream));
+}
+
+// A 64-bit random word for (seed, stream, index, lane):
+// hash_combine(hash_combine(stream_key(seed, stream), index), lane).
 constexpr std::uint64_t random_bits(std::uint64_t seed, Stream stream, std::uint64_t index,
                                     std::uint64_t lane = 0) {
-  return hash_combine(hash_combine(hash_combine(mix64(seed), static_cast<std::uint64_t>(stream)),
-                                   index),
-                      lane);
+  return hash_combine(hash_combine(stream_key(seed, stream), index), lane);
 }
 
 // Uniform double in [0, 1) with 53 random bits.
