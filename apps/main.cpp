@@ -421,6 +421,8 @@ struct ReproduceCommand {
   std::string out1 = "out/table1", out2 = "out/table2";
   std::string dims = "3-7", study_dims = "3-7";
   dfvn::CnjStudyConfig study;
+  std::string study_lattice = "interior";
+  std::vector<std::string> study_bases = {"simplex", "turning-bands"};
   dfvn::WarpConfig warp{.width = 384, .height = 216};
   dfvn::Table2Config table2;
   std::string setting = "shader";
@@ -482,7 +484,8 @@ struct ReproduceCommand {
         "cnj-study",
         "CNJ (each noise basis) against random jitter over noise frequencies 0.1, 0.2, 0.35, 0.5, 1 cycles per\n"
         "spacing and step scales 0.2, 0.35, 0.5, compared at equal RMS displacement, neighbour disorder and lattice\n"
-        "order (interior points of a K^N lattice, nothing dropped). Writes DIR/cnj_study.csv,\n"
+        "order (--lattice interior: interior points of a K^N lattice, nothing dropped; --lattice paper: Table 1's\n"
+        "lattice, points leaving [0,1]^N dropped as the paper does). Writes DIR/cnj_study.csv,\n"
         "DIR/cnj_study_jitter.csv, DIR/cnj_study.md and (with gnuplot) DIR/cnj_study.png; prints the Markdown.\n"
         "The CNJ defaults come from this study's rule (data/cnj_defaults.md).");
     s->add_option("--out", study.out_dir, "Output directory")->capture_default_str();
@@ -490,6 +493,18 @@ struct ReproduceCommand {
     s->add_option("--seeds", study.seeds, "Seeds per cell (--seed, --seed + 1, ...)")
         ->capture_default_str()
         ->check(CLI::Range(1, 1000));
+    s->add_option("--lattice", study_lattice,
+                  "interior (the study's cell-centred lattice, statistics over interior sites) or paper (Table 1's "
+                  "lattice linspace(0.05, 0.95, K), leaving points dropped)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"interior", "paper"}));
+    s->add_option("--noises", study_bases, "Comma list of noise bases to study")->delimiter(',')->capture_default_str();
+    s->add_option("--frequencies", study.frequencies, "Comma list of noise frequencies, cycles per lattice spacing")
+        ->delimiter(',')
+        ->capture_default_str();
+    s->add_option("--step-scales", study.step_scales, "Comma list of step scales C (t = C dbar(N) spacing)")
+        ->delimiter(',')
+        ->capture_default_str();
     s->add_flag("--quiet", quiet, "No progress on stderr");
     add_common_options(*s, common3);
     s->callback([this] { run_cnj_study(); });
@@ -498,6 +513,9 @@ struct ReproduceCommand {
 
   void run_cnj_study() {
     study.dimensions = dfvn::parse_dimension_list(study_dims);
+    study.lattice = dfvn::parse_study_lattice(study_lattice);
+    study.bases.clear();
+    for (const std::string& name : study_bases) study.bases.push_back(dfvn::parse_noise_basis(name));
     study.seed = common3.seed;
     study.threads = common3.threads;
     study.validate();

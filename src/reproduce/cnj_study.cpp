@@ -12,6 +12,7 @@
 
 #include "core/stopwatch.hpp"
 #include "io/atomic_file.hpp"
+#include "reproduce/reproduce.hpp"
 #include "sampling/curl_noise_jitter.hpp"
 #include "sampling/jitter.hpp"
 #include "sampling/lattice.hpp"
@@ -20,9 +21,17 @@
 
 namespace dfvn {
 
+std::string_view to_string(StudyLattice lattice) { return lattice == StudyLattice::paper ? "paper" : "interior"; }
+
+StudyLattice parse_study_lattice(std::string_view name) {
+  if (name == "interior") return StudyLattice::interior;
+  if (name == "paper") return StudyLattice::paper;
+  throw std::invalid_argument(fmt::format("--lattice must be interior or paper, not '{}'", name));
+}
+
 void CnjStudyConfig::validate() const {
   if (dimensions.empty()) throw std::invalid_argument("--dims must name at least one dimension");
-  for (int d : dimensions) cnj_study_grid(d);
+  for (int d : dimensions) study_grid(lattice, d);
   if (seeds < 1 || seeds > 1000) throw std::invalid_argument(fmt::format("--seeds must be in 1..1000, got {}", seeds));
   if (bases.empty() || frequencies.empty() || step_scales.empty())
     throw std::invalid_argument("the study needs at least one basis, frequency and step scale");
@@ -43,6 +52,13 @@ int cnj_study_grid(int dimension) {
     case 8: return 4;
     default: throw std::invalid_argument(fmt::format("the CNJ study covers dimensions 2..8, not {}", dimension));
   }
+}
+
+int study_grid(StudyLattice lattice, int dimension) {
+  if (lattice == StudyLattice::interior) return cnj_study_grid(dimension);
+  if (dimension < 3 || dimension > 7)
+    throw std::invalid_argument(fmt::format("the paper lattice covers dimensions 3..7 (Table 1), not {}", dimension));
+  return table1_grid(dimension);
 }
 
 namespace {
@@ -71,13 +87,13 @@ double quantile_of_sorted(const std::vector<double>& sorted, double q) {
   return sorted[below] + (rank - static_cast<double>(below)) * (sorted[above] - sorted[below]);
 }
 
-// NN distances of every point, summarised over the interior ones, in spacings.
-Packing interior_packing(const PointSet& points, const std::vector<unsigned char>& interior, double spacing, int threads) {
+// NN distances of every point, summarised over the counted ones, in spacings.
+Packing packing_of(const PointSet& points, const std::vector<unsigned char>& counted, double spacing, int threads) {
   const std::vector<double> distances = nearest_neighbour_distances(points, KnnBackend::nanoflann, threads);
   std::vector<double> inner;
   for (std::size_t i = 0; i < distances.size(); ++i)
-    if (interior[i]) inner.push_back(distances[i] / spacing);
-  if (inner.empty()) throw std::logic_error("the study lattice has no interior points");
+    if (counted[i]) inner.push_back(distances[i] / spacing);
+  if (inner.size() < 2) throw std::logic_error("the study lattice has fewer than two counted points");
   std::sort(inner.begin(), inner.end());
   return {inner.front(), quantile_of_sorted(inner, 0.01)};
 }
@@ -99,10 +115,35 @@ double jitter_half_width_for_order(double order) {
   return 0.5 * (lo + hi);
 }
 
-Packing jitter_packing(const LatticeSpec& lattice, double half_width_spacings, std::uint64_t seed,
-                       const std::vector<unsigned char>& interior, int threads) {
-  const double a = lattice.spacing();
-  return interior_packing(jittered_lattice(lattice, half_width_spacings * a, seed, threads), interior, a, threads);
+// The points of `points` inside [0,1]^N.
+PointSet inside_unit_cube(const PointSet& points) {
+  PointSet kept{points.dimension, {}, points.domain};
+  const auto n = static_cast<std::size_t>(points.dimension);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double* x = &points.coordinates[i * n];
+    if (std::all_of(x, x + n, [](double v) { return v >= 0.0 && v <= 1.0; }))
+      kept.coordinates.insert(kept.coordinates.end(), x, x + n);
+  }
+  return kept;
+}
+
+// How the study reads a point set's packing: over the interior sites (interior lattice) or over every
+// point that stayed in [0,1]^N, after dropping the others (paper lattice).
+struct PackingRule {
+  StudyLattice lattice;
+  std::vector<unsigned char> interior;  // interior lattice only
+  double spacing;
+  int threads;
+
+  Packing operator()(const PointSet& points) const {
+    if (lattice == StudyLattice::interior) return packing_of(points, interior, spacing, threads);
+    const PointSet kept = inside_unit_cube(points);
+    return packing_of(kept, std::vector<unsigned char>(kept.size(), 1), spacing, threads);
+  }
+};
+
+Packing jitter_packing(const LatticeSpec& lattice, double half_width_spacings, std::uint64_t seed, const PackingRule& rule) {
+  return rule(jittered_lattice(lattice, half_width_spacings * lattice.spacing(), seed, rule.threads));
 }
 
 }  // namespace
@@ -115,9 +156,11 @@ CnjStudyResult run_cnj_study(const CnjStudyConfig& config, const StageProgress& 
   const std::size_t runs_per_dimension =
       config.bases.size() * config.frequencies.size() * config.step_scales.size() * static_cast<std::size_t>(config.seeds);
   for (int n : config.dimensions) {
-    const LatticeSpec lattice{n, cnj_study_grid(n), Protocol::unit};
+    const bool paper = config.lattice == StudyLattice::paper;
+    const LatticeSpec lattice{n, study_grid(config.lattice, n), paper ? Protocol::paper : Protocol::unit};
     const double a = lattice.spacing();
-    const auto interior = interior_mask(lattice);
+    const PackingRule packing{config.lattice, paper ? std::vector<unsigned char>{} : interior_mask(lattice), a,
+                              config.threads};
     const std::string stage = fmt::format("cnj-study {}D", n);
     std::size_t done = 0;
     for (NoiseBasis basis : config.bases)
@@ -152,13 +195,15 @@ CnjStudyResult run_cnj_study(const CnjStudyConfig& config, const StageProgress& 
             row.lattice_order = d.lattice_order;
             row.skipped_update_fraction =
                 static_cast<double>(cnj.trace_stats.skipped_updates) / static_cast<double>(moved.size());
-            row.cnj = interior_packing(moved, interior, a, config.threads);
+            row.cnj = packing(moved);
+            if (paper)
+              row.dropped_fraction = 1.0 - static_cast<double>(inside_unit_cube(moved).size()) / static_cast<double>(moved.size());
             row.h_rms = row.rms_displacement * std::sqrt(3.0 / n);
             row.h_disorder = row.neighbour_disorder / std::sqrt(2.0 * n / 3.0);
             row.h_order = jitter_half_width_for_order(row.lattice_order);
-            row.jitter_rms = jitter_packing(lattice, row.h_rms, row.seed, interior, config.threads);
-            row.jitter_disorder = jitter_packing(lattice, row.h_disorder, row.seed, interior, config.threads);
-            row.jitter_order = jitter_packing(lattice, row.h_order, row.seed, interior, config.threads);
+            row.jitter_rms = jitter_packing(lattice, row.h_rms, row.seed, packing);
+            row.jitter_disorder = jitter_packing(lattice, row.h_disorder, row.seed, packing);
+            row.jitter_order = jitter_packing(lattice, row.h_order, row.seed, packing);
             result.rows.push_back(row);
           }
     for (double h : {0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.45, 0.5, 0.6, 0.7}) {
@@ -170,7 +215,7 @@ CnjStudyResult run_cnj_study(const CnjStudyConfig& config, const StageProgress& 
       p.rms_displacement = d.rms / a;
       p.neighbour_disorder = d.neighbour_disorder;
       p.lattice_order = d.lattice_order;
-      p.packing = interior_packing(points, interior, a, config.threads);
+      p.packing = packing(points);
       result.jitter_curve.push_back(p);
     }
     if (progress) progress(stage, 1.0);
@@ -187,15 +232,19 @@ struct CellMean {
   NoiseBasis basis{};
   double frequency = 0.0, step_scale = 0.0;
   int runs = 0;
-  double rms = 0.0, median_over_rms = 0.0, unmoved = 0.0, disorder = 0.0, order = 0.0, skipped = 0.0;
+  double rms = 0.0, median_over_rms = 0.0, unmoved = 0.0, disorder = 0.0, order = 0.0, skipped = 0.0, dropped = 0.0;
   double q01 = 0.0, min = 0.0;
   double q01_vs_rms = 0.0, min_vs_rms = 0.0, q01_vs_disorder = 0.0, q01_vs_order = 0.0;  // ratios CNJ / jitter
 };
 
 std::vector<CellMean> cell_means(const CnjStudyResult& result) {
-  std::map<std::tuple<int, int, double, double>, CellMean> cells;
+  // Seed sums of the jitter packings, beside each cell; the ratios are of seed means.
+  struct JitterSums {
+    double q01_rms = 0.0, min_rms = 0.0, q01_disorder = 0.0, q01_order = 0.0;
+  };
+  std::map<std::tuple<int, int, double, double>, std::pair<CellMean, JitterSums>> cells;
   for (const CnjStudyRow& r : result.rows) {
-    CellMean& c = cells[{r.dimension, static_cast<int>(r.basis), r.frequency, r.step_scale}];
+    auto& [c, jitter] = cells[{r.dimension, static_cast<int>(r.basis), r.frequency, r.step_scale}];
     c.dimension = r.dimension;
     c.basis = r.basis;
     c.frequency = r.frequency;
@@ -207,22 +256,24 @@ std::vector<CellMean> cell_means(const CnjStudyResult& result) {
     c.disorder += r.neighbour_disorder;
     c.order += r.lattice_order;
     c.skipped += r.skipped_update_fraction;
+    c.dropped += r.dropped_fraction;
     c.q01 += r.cnj.nn_q01;
     c.min += r.cnj.nn_min;
-    // Ratios of seed means are formed below; accumulate the jitter sums here.
-    c.q01_vs_rms += r.jitter_rms.nn_q01;
-    c.min_vs_rms += r.jitter_rms.nn_min;
-    c.q01_vs_disorder += r.jitter_disorder.nn_q01;
-    c.q01_vs_order += r.jitter_order.nn_q01;
+    jitter.q01_rms += r.jitter_rms.nn_q01;
+    jitter.min_rms += r.jitter_rms.nn_min;
+    jitter.q01_disorder += r.jitter_disorder.nn_q01;
+    jitter.q01_order += r.jitter_order.nn_q01;
   }
   std::vector<CellMean> out;
-  for (auto& [key, c] : cells) {
+  for (auto& [key, cell] : cells) {
+    auto& [c, jitter] = cell;
     const double n = c.runs;
-    for (double* v : {&c.rms, &c.median_over_rms, &c.unmoved, &c.disorder, &c.order, &c.skipped, &c.q01, &c.min}) *v /= n;
-    c.q01_vs_rms = c.q01 / (c.q01_vs_rms / n);
-    c.min_vs_rms = c.min / (c.min_vs_rms / n);
-    c.q01_vs_disorder = c.q01 / (c.q01_vs_disorder / n);
-    c.q01_vs_order = c.q01 / (c.q01_vs_order / n);
+    for (double* v : {&c.rms, &c.median_over_rms, &c.unmoved, &c.disorder, &c.order, &c.skipped, &c.dropped, &c.q01, &c.min})
+      *v /= n;
+    c.q01_vs_rms = c.q01 / (jitter.q01_rms / n);
+    c.min_vs_rms = c.min / (jitter.min_rms / n);
+    c.q01_vs_disorder = c.q01 / (jitter.q01_disorder / n);
+    c.q01_vs_order = c.q01 / (jitter.q01_order / n);
     out.push_back(c);
   }
   return out;
@@ -270,21 +321,28 @@ std::string cnj_study_markdown(const CnjStudyResult& result) {
   const CnjStudyConfig& cfg = result.config;
   const auto cells = cell_means(result);
   const CnjOptions defaults;
-  std::string md = "# CNJ against jitter: the study\n\n";
+  const bool paper = cfg.lattice == StudyLattice::paper;
+  std::string md = paper ? "# CNJ against jitter on the paper's lattice\n\n" : "# CNJ against jitter: the study\n\n";
   md += fmt::format(
-      "Curl noise jittering (one RK4 step + Gauss-Newton reprojection) of a cell-centred K^N lattice in [0,1]^N, "
+      "Curl noise jittering (one RK4 step + Gauss-Newton reprojection) of {}, "
       "against uniform jitter of the same lattice, {} seed(s) per cell (seeds {}..{}). Packing = nearest-neighbour "
-      "distance over the interior sites (at least one spacing from the lattice's outer layer; no point is dropped), "
-      "nn_q01 = its 1% quantile, all in lattice spacings. Each CNJ run is compared with three jitter runs of the "
+      "distance {}, nn_q01 = its 1% quantile, all in lattice spacings. Each CNJ run is compared with three jitter runs of the "
       "same lattice and seed, whose half-width h matches CNJ's RMS displacement (h = rms sqrt(3/N)), neighbour "
       "disorder (RMS relative displacement of lattice neighbours; h = disorder / sqrt(2N/3)) or lattice order "
       "(surviving Bragg amplitude; (sin 2 pi h / 2 pi h)^2 = order). Ratios are CNJ / jitter of seed means; "
       "above 1, CNJ packs better. {:.0f} s on this machine ({} thread(s) requested, 0 = all cores).\n\n",
-      cfg.seeds, cfg.seed, cfg.seed + static_cast<std::uint64_t>(cfg.seeds) - 1, result.seconds, cfg.threads);
+      paper ? "the paper's Table 1 lattice (linspace(0.05, 0.95, K) per axis)" : "a cell-centred K^N lattice in [0,1]^N",
+      cfg.seeds, cfg.seed, cfg.seed + static_cast<std::uint64_t>(cfg.seeds) - 1,
+      paper ? "over every point that stays in [0,1]^N (points that leave are dropped, for CNJ and jitter alike, as the "
+              "paper does)"
+            : "over the interior sites (at least one spacing from the lattice's outer layer; no point is dropped)",
+      result.seconds, cfg.threads);
   md += "Lattices: ";
   for (std::size_t i = 0; i < cfg.dimensions.size(); ++i) {
-    const int n = cfg.dimensions[i], k = cnj_study_grid(n);
-    md += fmt::format("{}{}D K={} ({:.0f} points, {:.0f} interior)", i ? ", " : "", n, k, std::pow(k, n), std::pow(k - 2, n));
+    const int n = cfg.dimensions[i], k = study_grid(cfg.lattice, n);
+    md += paper ? fmt::format("{}{}D K={} ({:.0f} points)", i ? ", " : "", n, k, std::pow(k, n))
+                : fmt::format("{}{}D K={} ({:.0f} points, {:.0f} interior)", i ? ", " : "", n, k, std::pow(k, n),
+                              std::pow(k - 2, n));
   }
   md += ".\n\n";
 
@@ -292,16 +350,16 @@ std::string cnj_study_markdown(const CnjStudyResult& result) {
   md += "## Answers per dimension\n\n";
   md += fmt::format("For the library defaults ({} noise, frequency {:g} cycles per spacing, step scale {:g}):\n\n",
                     to_string(defaults.noise), defaults.frequency, defaults.step_scale);
-  md += "| n | RMS move | median/RMS | unmoved | q01 vs jitter at equal RMS | nn_min vs jitter at equal RMS | "
-        "q01 at equal disorder | q01 at equal order |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  md += "| n | RMS move | median/RMS | unmoved | dropped | q01 vs jitter at equal RMS | nn_min vs jitter at equal RMS | "
+        "q01 at equal disorder | q01 at equal order |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (int n : cfg.dimensions) {
     const CellMean* c = find_cell(cells, n, defaults.noise, defaults.frequency, defaults.step_scale);
     if (!c) {
-      md += fmt::format("| {} | (defaults not in the studied grid) | | | | | | |\n", n);
+      md += fmt::format("| {} | (defaults not in the studied grid) | | | | | | | |\n", n);
       continue;
     }
-    md += fmt::format("| {} | {:.3f} | {:.2f} | {:.2f}% | {} | {} | {} | {} |\n", n, c->rms, c->median_over_rms,
-                      100.0 * c->unmoved, verdict(c->q01_vs_rms), verdict(c->min_vs_rms), verdict(c->q01_vs_disorder),
+    md += fmt::format("| {} | {:.3f} | {:.2f} | {:.2f}% | {:.1f}% | {} | {} | {} | {} |\n", n, c->rms, c->median_over_rms,
+                      100.0 * c->unmoved, 100.0 * c->dropped, verdict(c->q01_vs_rms), verdict(c->min_vs_rms), verdict(c->q01_vs_disorder),
                       verdict(c->q01_vs_order));
   }
   md += "\nThe best any studied cell of each basis does (largest ratio; its frequency / step scale in brackets):\n\n";
@@ -386,15 +444,15 @@ std::string write_cnj_study(const CnjStudyResult& result, const Log& log) {
   std::string rows =
       "dim,grid,noise,frequency,step_scale,seed,rms_displacement,median_over_rms,frac_unmoved,neighbour_disorder,"
       "lattice_order,skipped_update_fraction,cnj_nn_min,cnj_nn_q01,h_rms,jitter_rms_nn_min,jitter_rms_nn_q01,"
-      "h_disorder,jitter_disorder_nn_min,jitter_disorder_nn_q01,h_order,jitter_order_nn_min,jitter_order_nn_q01\n";
+      "h_disorder,jitter_disorder_nn_min,jitter_disorder_nn_q01,h_order,jitter_order_nn_min,jitter_order_nn_q01,dropped_fraction\n";
   for (const CnjStudyRow& r : result.rows)
     rows += fmt::format("{},{},{},{:g},{:g},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},"
-                        "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
+                        "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
                         r.dimension, r.grid, to_string(r.basis), r.frequency, r.step_scale, r.seed, r.rms_displacement,
                         r.median_over_rms, r.fraction_unmoved, r.neighbour_disorder, r.lattice_order,
                         r.skipped_update_fraction, r.cnj.nn_min, r.cnj.nn_q01, r.h_rms, r.jitter_rms.nn_min,
                         r.jitter_rms.nn_q01, r.h_disorder, r.jitter_disorder.nn_min, r.jitter_disorder.nn_q01, r.h_order,
-                        r.jitter_order.nn_min, r.jitter_order.nn_q01);
+                        r.jitter_order.nn_min, r.jitter_order.nn_q01, r.dropped_fraction);
   std::string curve = "dim,half_width,rms_displacement,neighbour_disorder,lattice_order,nn_min,nn_q01\n";
   for (const JitterCurvePoint& p : result.jitter_curve)
     curve += fmt::format("{},{:g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n", p.dimension, p.half_width, p.rms_displacement,

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "noise/noise_functions.hpp"
@@ -13,7 +14,18 @@
 
 namespace dfvn {
 
+// Which lattice the study jitters.
+//  interior: the study's own cell-centred K^N lattice (cnj_study_grid), statistics over its interior
+//            sites, so nothing is dropped and no boundary effect enters.
+//  paper:    the lattice of the paper's Table 1 (linspace(0.05, 0.95, K), K = table1_grid), points that
+//            leave [0,1]^N dropped as the paper does, for CNJ and for the matched jitter alike, and
+//            statistics over every point kept.
+enum class StudyLattice { interior, paper };
+std::string_view to_string(StudyLattice lattice);
+StudyLattice parse_study_lattice(std::string_view name);  // throws std::invalid_argument
+
 struct CnjStudyConfig {
+  StudyLattice lattice = StudyLattice::interior;
   std::vector<int> dimensions = {3, 4, 5, 6, 7};
   std::uint64_t seed = 1;  // seeds seed .. seed + seeds - 1
   int seeds = 3;
@@ -31,6 +43,8 @@ struct CnjStudyConfig {
 // sites (at least one spacing from the lattice's outer layer), whose neighbours are all present, so no
 // point is dropped and no boundary effect enters.
 int cnj_study_grid(int dimension);
+// K for a lattice and dimension: cnj_study_grid or table1_grid.
+int study_grid(StudyLattice lattice, int dimension);
 
 // Nearest-neighbour packing over the interior points, in lattice spacings.
 struct Packing {
@@ -54,6 +68,7 @@ struct CnjStudyRow {
   double lattice_order = 0.0;
   double skipped_update_fraction = 0.0;  // Gauss-Newton updates not taken, per point
   Packing cnj;
+  double dropped_fraction = 0.0;  // CNJ points that left [0,1]^N (paper lattice only)
   // Uniform jitter of half-width h (spacings) chosen to match CNJ's RMS displacement
   // (h = rms sqrt(3/N)), neighbour disorder (h = disorder / sqrt(2N/3)) and lattice order
   // ((sin 2 pi h / 2 pi h)^2 = order, 0 < h <= 1/2).

@@ -73,6 +73,29 @@ TEST(CnjStudy, ReadingAnswersEveryComparisonAndStatesTheRule) {
   }
 }
 
+// The paper's lattice: Table 1's K, leaving points dropped and counted, the same rule for the jitter.
+TEST(CnjStudy, PaperLatticeDropsLeavingPointsAndCountsThem) {
+  CnjStudyConfig config;
+  config.lattice = StudyLattice::paper;
+  config.dimensions = {3};
+  config.seeds = 1;
+  config.bases = {kDefaultNoiseBasis};
+  config.frequencies = {CnjOptions{}.frequency};
+  config.step_scales = {CnjOptions{}.step_scale};
+  const CnjStudyResult result = run_cnj_study(config);
+  ASSERT_EQ(result.rows.size(), 1u);
+  const CnjStudyRow& r = result.rows.front();
+  EXPECT_EQ(r.grid, 10);
+  // The outer layer sits half a jitter width (0.05) from the faces and CNJ moves about 0.6 spacings
+  // (0.06): some points leave, most stay.
+  EXPECT_GT(r.dropped_fraction, 0.0);
+  EXPECT_LT(r.dropped_fraction, 0.2);
+  EXPECT_GT(r.cnj.nn_min, 0.0);
+  EXPECT_GE(r.cnj.nn_q01, r.cnj.nn_min);
+  EXPECT_GT(r.jitter_rms.nn_min, 0.0);
+  EXPECT_NE(cnj_study_markdown(result).find("paper's Table 1 lattice"), std::string::npos);
+}
+
 TEST(CnjStudy, RejectsBadConfigurations) {
   CnjStudyConfig config;
   config.dimensions = {9};
@@ -80,6 +103,11 @@ TEST(CnjStudy, RejectsBadConfigurations) {
   config.dimensions = {3};
   config.seeds = 0;
   EXPECT_THROW(config.validate(), std::invalid_argument);
+  config.seeds = 1;
+  config.lattice = StudyLattice::paper;
+  config.dimensions = {2};  // Table 1 has 3D..7D
+  EXPECT_THROW(config.validate(), std::invalid_argument);
+  EXPECT_THROW(parse_study_lattice("cube"), std::invalid_argument);
 }
 
 }  // namespace
