@@ -40,16 +40,26 @@ MethodPlan plan_method(const SampleConfig& config, Method method) {
   // paper: PDS and Sobol live on [0, delta K]^N, the box a 0.1-spaced K^N lattice would fill
   // (PROTOCOL.md): the unit cube for K = 10, [0, 0.7]^6 and [0, 0.6]^7 in Table 1.
   const Box paper_box{0.0, kPaperDelta * config.grid};
+  // The ball's and the sphere's counts are counted site by site up to kExactCountLimit lattice points
+  // (about a second); beyond, where the memory check refuses the run on any usual machine, they are
+  // estimated from the volume fraction (ball) or area / h^(N-1) (sphere), so that validating a huge
+  // --grid never loops over it.
+  constexpr std::uint64_t kExactCountLimit = std::uint64_t{1} << 27;
+  const bool exact = lattice_points <= kExactCountLimit;
   if (config.on == Surface::sphere) {  // cnj and random, at the count of the sphere's start set
-    plan.requested = sphere_start_set(config.dimension, config.grid).size();
+    plan.requested = exact ? sphere_start_set(config.dimension, config.grid).size()
+                           : static_cast<std::uint64_t>(sphere_area(config.dimension) /
+                                                        std::pow(sphere_start_spacing(config.grid), config.dimension - 1));
     plan.domain = Box{-1.0, 2.0};
     return plan;
   }
   switch (method) {
     case Method::cnj:
       if (config.cnj.domain == CnjDomain::ball) {
-        plan.requested = cnj_start_count(lattice, CnjDomain::ball);
         plan.domain.inscribed_ball = true;
+        plan.requested = exact ? cnj_start_count(lattice, CnjDomain::ball)
+                               : static_cast<std::uint64_t>(static_cast<double>(lattice_points) *
+                                                            plan.domain.volume(config.dimension));
       }
       break;
     case Method::jitter:

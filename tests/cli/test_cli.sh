@@ -136,6 +136,9 @@ expect_error "sample domain mode" "" --dim 3 --grid 4 --domain-mode keep
 expect_error "sphere in 2D" "" --dim 2 --grid 4 --on sphere
 expect_message "sphere in 2D" "needs --dim 3..8"
 expect_error "sphere methods" "" --dim 3 --grid 4 --on sphere --methods cnj,pds
+# A huge lattice is refused at once, not counted site by site.
+expect_error "ball memory" "" --dim 8 --grid 100 --domain ball --max-memory 1
+expect_error "sphere memory" "" --dim 8 --grid 100 --on sphere --max-memory 1
 expect_error "ball rdf" "" --dim 3 --grid 4 --domain ball --rdf "$work/ballrdf.csv"
 
 # RDF output
