@@ -266,6 +266,10 @@ struct SampleCommand {
   std::string rdf_path;
   std::string points_dir;
   std::string format = "csv";
+  std::string domain = "cube";
+  std::string domain_mode = "conformant";
+  std::string on = "none";
+  CLI::Option* methods_option = nullptr;
   int realizations = 1;
   bool quiet = false;
 
@@ -281,7 +285,7 @@ struct SampleCommand {
     cmd->add_option("--grid", config.grid, "Lattice points per axis K (>= 2); K^N points")
         ->capture_default_str()
         ->check(CLI::Range(2, 1 << 30));
-    cmd->add_option("--methods", methods, "Comma list of cnj, jitter, pds, sobol, random, halton (scrambled unless --scramble none), lhs")->capture_default_str();
+    methods_option = cmd->add_option("--methods", methods, "Comma list of cnj, jitter, pds, sobol, random, halton (scrambled unless --scramble none), lhs; with --on sphere: cnj,random")->capture_default_str();
     cmd->add_option("--protocol", protocol,
                     "paper: Section 5.1 as the paper ran it (lattice linspace(0.05, 0.95, K), jitter +-0.05, PDS\n"
                     "radius 0.1 and Sobol on [0, 0.1K]^N, Sobol count 2^round(log2 K^N)); unit: every method in\n"
@@ -323,6 +327,20 @@ struct SampleCommand {
     cmd->add_option("--reproject", reproject, "CNJ reprojection after each step: none, newton (Eq. 12), gauss-newton (Eq. 10-11)")
         ->capture_default_str()
         ->check(CLI::IsMember({"none", "newton", "gauss-newton"}));
+    cmd->add_option("--domain", domain,
+                    "Where CNJ's points stay: cube ([0,1]^N) or ball (its inscribed ball; the lattice clipped to it)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"cube", "ball"}));
+    cmd->add_option("--domain-mode", domain_mode,
+                    "conformant: CNJ along the field bounded by the domain (Eq. 13), no point leaves; drop: the\n"
+                    "free field, points that leave are dropped (the paper's protocol; reproduce table1 uses it)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"conformant", "drop"}));
+    cmd->add_option("--on", on,
+                    "sphere: methods cnj (traced with f_1 = |x|^2) and random on the unit sphere S^{N-1}, N >= 3,\n"
+                    "from the K^N lattice on [-1,1]^N within half a spacing of it, projected; geodesic statistics")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"none", "sphere"}));
     cmd->add_option("--reproject-iters", config.cnj.trace.reproject_iterations, "CNJ reprojection iterations R at most")
         ->capture_default_str()
         ->check(CLI::Range(0, 1000));
@@ -356,6 +374,10 @@ struct SampleCommand {
     config.cnj.trace.integrator = dfvn::parse_integrator(integrator);
     config.cnj.noise = dfvn::parse_noise_basis(noise);
     config.cnj.trace.reprojection = dfvn::parse_reprojection(reproject);
+    config.cnj.domain = dfvn::parse_cnj_domain(domain);
+    config.cnj.domain_mode = dfvn::parse_domain_mode(domain_mode);
+    config.on = dfvn::parse_surface(on);
+    if (config.on == dfvn::Surface::sphere && methods_option->count() == 0) methods = "cnj,random";
     config.methods.clear();
     for (const auto& name : CLI::detail::split(methods, ',')) {
       const dfvn::Method m = dfvn::parse_method(CLI::detail::trim_copy(name));

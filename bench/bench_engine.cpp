@@ -92,12 +92,23 @@ DFVN_BENCH_ALL_DIMENSIONS(BM_Field, ->DenseRange(0, kLastBasis));
 DFVN_BENCH_ALL_DIMENSIONS(BM_Rk4GaussNewtonStep, ->DenseRange(0, kLastBasis));
 
 // CNJ on the 6^7 paper lattice (279,936 points), all threads, default basis: the 2 s target.
+// The paper's protocol: the free field, points that leave [0,1]^N dropped.
 void BM_CnjPaper7D(benchmark::State& state) {
+  const LatticeSpec lattice{7, 6, Protocol::paper};
+  CnjOptions options;
+  options.domain_mode = DomainMode::drop;
+  for (auto _ : state) benchmark::DoNotOptimize(curl_noise_jitter(lattice, options, 1, 0));
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(lattice.point_count()));
+}
+BENCHMARK(BM_CnjPaper7D)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The main job's default: the field bounded by [0,1]^N (Eq. 13), every point kept.
+void BM_CnjConformant7D(benchmark::State& state) {
   const LatticeSpec lattice{7, 6, Protocol::paper};
   for (auto _ : state) benchmark::DoNotOptimize(curl_noise_jitter(lattice, CnjOptions{}, 1, 0));
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(lattice.point_count()));
 }
-BENCHMARK(BM_CnjPaper7D)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_CnjConformant7D)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Nearest-neighbour distances of 279,936 jittered 7D points (KD-tree build + k = 2 queries).
 void BM_NearestNeighbours7D(benchmark::State& state) {

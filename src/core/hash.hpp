@@ -35,6 +35,7 @@ enum class Stream : std::uint64_t {
   halton_scramble = 10,
   latin_hypercube = 11,
   genz = 12,
+  sphere_points = 13,
   test = 99,
 };
 

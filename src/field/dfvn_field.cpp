@@ -13,7 +13,13 @@
 
 namespace dfvn {
 
-void FieldOptions::validate() const { check_noise_frequency(frequency); }
+void FieldOptions::validate() const {
+  check_noise_frequency(frequency);
+  if ((constraint == FieldConstraint::inside_cube || constraint == FieldConstraint::inside_ball) &&
+      !(transition_width > 0.0 && transition_width <= 0.25))
+    throw std::invalid_argument(
+        fmt::format("the boundary's transition width must be in (0, 1/4], got {:g}", transition_width));
+}
 
 template <int N>
 DfvnField<N>::DfvnField(std::uint64_t seed, const FieldOptions& options)
@@ -22,6 +28,8 @@ DfvnField<N>::DfvnField(std::uint64_t seed, const FieldOptions& options)
       seed_(seed),
       scale_(2.0 * std::numbers::pi * options.frequency / noise_->wavenumber()),
       amplitude_(noise_->amplitude()) {
+  if (options.constraint != FieldConstraint::none)
+    constraint_ = std::make_shared<const ConstraintFunction<N>>(options.constraint, options.transition_width);
   // The noise domain bounds F x; each basis is safe for its own scale s = 2 pi F / k_eff there
   // (noise/noise_domain.hpp), which the checks of the tests assert.
   assert(scale_ > 0.0 && scale_ <= 2.0 * options.frequency);
@@ -46,6 +54,7 @@ FieldSample<N> DfvnField<N>::evaluate_functions(const Vec<N>& x) const {
     out.value[i] = value_scale * noise.value[i];
     out.gradient[i] = amplitude_ * noise.gradient[i];
   }
+  if (constraint_) constraint_->replace(x, out.value[0], out.gradient[0]);
   out.velocity.setConstant(std::numeric_limits<double>::quiet_NaN());
   return out;
 }

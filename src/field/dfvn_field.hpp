@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "core/dimension.hpp"
+#include "field/constraint.hpp"
 #include "noise/noise_functions.hpp"
 
 namespace dfvn {
@@ -23,8 +24,14 @@ struct FieldOptions {
   // Cycles per unit length, the same for every basis: one cycle is 2 pi / k_eff long, where
   // k_eff = sqrt(E|grad f|^2 / E f^2) is the basis's effective wavenumber (NoiseFunctions::wavenumber).
   double frequency = 1.0;
+  // Section 4: f_1 replaced by a boundary (Eq. 13) or surface function (field/constraint.hpp); the
+  // transition width w of Eq. 13's alpha, in length units, is used by inside_cube and inside_ball.
+  FieldConstraint constraint = FieldConstraint::none;
+  double transition_width = 0.0;
 
-  void validate() const;  // throws std::invalid_argument unless the frequency is finite and positive
+  // throws std::invalid_argument unless the frequency is finite and positive and the constraint's
+  // transition width is in (0, 1/4]
+  void validate() const;
 };
 
 // f_i(x) = (A / s) n_i(s x) with n_i the N-1 functions of the basis, s = 2 pi F / k_eff the scale that
@@ -32,7 +39,9 @@ struct FieldOptions {
 // c = cross(grad f_i) has an RMS magnitude of 1 over space for every dimension, basis and frequency:
 // the frequency changes how fast the field varies, never how fast points move. Scaling the f_i by
 // constants does not change their iso-contours, so reprojection (Eq. 10-12) keeps working on exactly
-// the curves that c is tangent to.
+// the curves that c is tangent to. With a constraint, f_1 is the constraint's function of f~_1
+// (field/constraint.hpp) and the same holds: reprojection then also keeps f_1, the boundary or
+// surface function, at its start value.
 template <int N>
 class DfvnField {
  public:
@@ -61,6 +70,7 @@ class DfvnField {
 
  private:
   std::shared_ptr<const NoiseFunctions<N>> noise_;  // shared: a field is cheap to copy
+  std::shared_ptr<const ConstraintFunction<N>> constraint_;  // null: the free field
   FieldOptions options_;
   std::uint64_t seed_;
   double scale_;

@@ -179,6 +179,7 @@ CnjStudyResult run_cnj_study(const CnjStudyConfig& config, const StageProgress& 
             options.noise = basis;
             options.frequency = frequency;
             options.step_scale = step_scale;
+            options.domain_mode = DomainMode::drop;  // the free field: the study measures interior packing
             const CnjResult cnj = curl_noise_jitter(lattice, options, row.seed, config.threads);
             // Every traced point, inside [0,1]^N or not: x = site + displacement.
             PointSet moved{n, cnj.displacements, Box{0.0, 1.0}};

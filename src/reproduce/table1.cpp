@@ -69,6 +69,7 @@ Table1Result run_table1(const Table1Config& config, const StageProgress& progres
     c.methods = {Method::cnj, Method::jitter, Method::pds, Method::sobol};
     c.protocol = Protocol::paper;
     c.cnj = config.cnj;
+    c.cnj.domain_mode = DomainMode::drop;  // the paper's protocol: points that leave [0,1]^N are dropped
     c.compute_rdf = true;
     c.rdf = config.rdf;
     result.results.push_back(run_sampling(c, false, [&](std::string_view stage, double f) {

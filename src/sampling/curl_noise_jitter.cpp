@@ -1,16 +1,31 @@
 #include "sampling/curl_noise_jitter.hpp"
 
-#include <atomic>
+#include <algorithm>
 #include <cmath>
-#include <omp.h>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
-#include "core/parallel.hpp"
+#include "core/message_text.hpp"
 #include "noise/noise_domain.hpp"
 
 namespace dfvn {
+
+CnjDomain parse_cnj_domain(std::string_view name) {
+  if (name == "cube") return CnjDomain::cube;
+  if (name == "ball") return CnjDomain::ball;
+  throw std::invalid_argument("unknown domain " + quote_for_message(name) + " (allowed: cube, ball)");
+}
+
+std::string_view to_string(CnjDomain domain) { return domain == CnjDomain::cube ? "cube" : "ball"; }
+
+DomainMode parse_domain_mode(std::string_view name) {
+  if (name == "conformant") return DomainMode::conformant;
+  if (name == "drop") return DomainMode::drop;
+  throw std::invalid_argument("unknown domain mode " + quote_for_message(name) + " (allowed: conformant, drop)");
+}
+
+std::string_view to_string(DomainMode mode) { return mode == DomainMode::conformant ? "conformant" : "drop"; }
 
 void CnjOptions::validate() const {
   trace.validate();
@@ -18,6 +33,57 @@ void CnjOptions::validate() const {
     throw std::invalid_argument(fmt::format("step scale must be in (0, 2^20], got {:g}", step_scale));
   check_noise_frequency(frequency);
   parse_noise_basis(to_string(noise));  // an unknown enum value throws
+  parse_cnj_domain(to_string(domain));
+  if (!(boundary_width > 0.0 && boundary_width <= 1e6))
+    throw std::invalid_argument(fmt::format("boundary width must be in (0, 1e6] lattice spacings, got {:g}", boundary_width));
+  // Refinements double the steps kMaxRefinements times: keep that an int.
+  if (domain_mode == DomainMode::conformant && trace.steps > (1 << 20))
+    throw std::invalid_argument(fmt::format("conformant CNJ takes at most 2^20 steps, got {}", trace.steps));
+}
+
+double cnj_transition_width(const CnjOptions& options, const LatticeSpec& lattice) {
+  return std::min(options.boundary_width * lattice.spacing(), 0.25);
+}
+
+namespace {
+
+bool site_in_domain(const double* x, int dimension, CnjDomain domain) {
+  if (domain == CnjDomain::cube) return true;
+  double from_centre2 = 0.0;
+  for (int j = 0; j < dimension; ++j) from_centre2 += (x[j] - 0.5) * (x[j] - 0.5);
+  return from_centre2 < 0.25;
+}
+
+FieldConstraint field_constraint(const CnjOptions& options) {
+  if (options.domain_mode == DomainMode::drop) return FieldConstraint::none;
+  return options.domain == CnjDomain::cube ? FieldConstraint::inside_cube : FieldConstraint::inside_ball;
+}
+
+}  // namespace
+
+std::vector<double> cnj_start_sites(const LatticeSpec& lattice, CnjDomain domain) {
+  const int n = lattice.dimension;
+  const std::uint64_t count = lattice.point_count();
+  std::vector<double> sites;
+  sites.reserve(domain == CnjDomain::cube ? count * n : 0);
+  std::vector<double> x(static_cast<std::size_t>(n));
+  for (std::uint64_t i = 0; i < count; ++i) {
+    lattice.point(i, x.data());
+    if (site_in_domain(x.data(), n, domain)) sites.insert(sites.end(), x.begin(), x.end());
+  }
+  return sites;
+}
+
+std::uint64_t cnj_start_count(const LatticeSpec& lattice, CnjDomain domain) {
+  const std::uint64_t count = lattice.point_count();
+  if (domain == CnjDomain::cube) return count;
+  std::uint64_t inside = 0;
+  std::vector<double> x(static_cast<std::size_t>(lattice.dimension));
+  for (std::uint64_t i = 0; i < count; ++i) {
+    lattice.point(i, x.data());
+    inside += site_in_domain(x.data(), lattice.dimension, domain);
+  }
+  return inside;
 }
 
 template <int N>
@@ -25,51 +91,39 @@ CnjResult curl_noise_jitter(const LatticeSpec& lattice, const CnjOptions& option
                             const ProgressCallback& progress) {
   options.validate();
   if (lattice.dimension != N) throw std::invalid_argument("lattice dimension does not match");
-  const auto count = static_cast<std::int64_t>(lattice.point_count());
   CnjResult result;
   result.trace_time = options.step_scale * average_neighbour_distance(N) * lattice.spacing();
   result.field_frequency = options.frequency / lattice.spacing();
-  const DfvnField<N> field(seed, FieldOptions{options.noise, result.field_frequency});
-  const Tracer<N> tracer(field, options.trace);
+  const FieldConstraint constraint = field_constraint(options);
+  const DfvnField<N> field(seed, FieldOptions{options.noise, result.field_frequency, constraint,
+                                              cnj_transition_width(options, lattice)});
+  const Box domain{0.0, 1.0, options.domain == CnjDomain::ball};
+  const std::vector<double> sites = cnj_start_sites(lattice, options.domain);
+  const auto count = static_cast<std::int64_t>(sites.size() / N);
+  result.started = static_cast<std::uint64_t>(count);
 
-  std::vector<double> moved(static_cast<std::size_t>(count) * N);
-  std::vector<unsigned char> inside(static_cast<std::size_t>(count));
-  result.displacements.resize(static_cast<std::size_t>(count) * N);
-  TraceStats stats;
-  std::atomic<std::int64_t> done{0};
-  const std::int64_t report_every = std::max<std::int64_t>(count / 100, 1024);
-#pragma omp parallel num_threads(resolve_threads(threads))
-  {
-    TraceStats local;
-#pragma omp for schedule(dynamic, 1024)
-    for (std::int64_t i = 0; i < count; ++i) {
-      Vec<N> x0;
-      lattice.point(static_cast<std::uint64_t>(i), x0.data());
-      const Vec<N> x = tracer.trace(x0, result.trace_time, &local);
-      Eigen::Map<Vec<N>>(moved.data() + i * N) = x;
-      inside[static_cast<std::size_t>(i)] = Box{0.0, 1.0}.contains(x.data(), N);
-      Eigen::Map<Vec<N>>(result.displacements.data() + i * N) = x - x0;
-      if (progress && (i + 1) % report_every == 0) {
-        const std::int64_t d = done.fetch_add(report_every) + report_every;
-        if (omp_get_thread_num() == 0) progress(static_cast<double>(d) / static_cast<double>(count));
-      }
-    }
-#pragma omp critical
-    stats += local;
-  }
+  const TracedPoints traced = trace_points<N>(
+      field, options.trace, sites, result.trace_time, [&](const Vec<N>& x) { return domain.contains(x.data(), N); },
+      options.domain_mode == DomainMode::conformant ? OnReject::retrace : OnReject::drop, threads, progress);
   // Compact and sum in index order, so every output is the same for any thread count.
-  result.points = PointSet{N, {}, Box{0.0, 1.0}};
-  result.points.coordinates.reserve(moved.size());
+  result.points = PointSet{N, {}, domain};
+  result.points.coordinates.reserve(traced.end.size());
+  result.displacements.resize(traced.end.size());
   double total_squared_displacement = 0.0;
   for (std::int64_t i = 0; i < count; ++i) {
-    total_squared_displacement += Eigen::Map<const Vec<N>>(result.displacements.data() + i * N).squaredNorm();
-    if (inside[static_cast<std::size_t>(i)])
-      result.points.coordinates.insert(result.points.coordinates.end(), moved.begin() + i * N, moved.begin() + (i + 1) * N);
+    auto u = Eigen::Map<Vec<N>>(result.displacements.data() + i * N);
+    u = Eigen::Map<const Vec<N>>(traced.end.data() + i * N) - Eigen::Map<const Vec<N>>(sites.data() + i * N);
+    total_squared_displacement += u.squaredNorm();
+    if (traced.accepted[static_cast<std::size_t>(i)])
+      result.points.coordinates.insert(result.points.coordinates.end(), traced.end.begin() + i * N,
+                                       traced.end.begin() + (i + 1) * N);
     else
       ++result.dropped;
   }
-  result.rms_displacement = std::sqrt(total_squared_displacement / static_cast<double>(count));
-  result.trace_stats = stats;
+  result.rms_displacement = count > 0 ? std::sqrt(total_squared_displacement / static_cast<double>(count)) : 0.0;
+  result.retraced = traced.retraced;
+  result.kept_at_site = traced.kept_at_start;
+  result.trace_stats = traced.stats;
   if (progress) progress(1.0);
   return result;
 }

@@ -18,6 +18,7 @@
 #include "sampling/jitter.hpp"
 #include "sampling/latin_hypercube.hpp"
 #include "sampling/poisson_disk.hpp"
+#include "stats/geodesic.hpp"
 
 namespace dfvn {
 
@@ -39,8 +40,28 @@ MethodPlan plan_method(const SampleConfig& config, Method method) {
   // paper: PDS and Sobol live on [0, delta K]^N, the box a 0.1-spaced K^N lattice would fill
   // (PROTOCOL.md): the unit cube for K = 10, [0, 0.7]^6 and [0, 0.6]^7 in Table 1.
   const Box paper_box{0.0, kPaperDelta * config.grid};
+  // The ball's and the sphere's counts are counted site by site up to kExactCountLimit lattice points
+  // (about a second); beyond, where the memory check refuses the run on any usual machine, they are
+  // estimated from the volume fraction (ball) or area / h^(N-1) (sphere), so that validating a huge
+  // --grid never loops over it.
+  constexpr std::uint64_t kExactCountLimit = std::uint64_t{1} << 27;
+  const bool exact = lattice_points <= kExactCountLimit;
+  if (config.on == Surface::sphere) {  // cnj and random, at the count of the sphere's start set
+    plan.requested = exact ? sphere_start_set(config.dimension, config.grid).size()
+                           : static_cast<std::uint64_t>(sphere_area(config.dimension) /
+                                                        std::pow(sphere_start_spacing(config.grid), config.dimension - 1));
+    plan.domain = Box{-1.0, 2.0};
+    return plan;
+  }
   switch (method) {
     case Method::cnj:
+      if (config.cnj.domain == CnjDomain::ball) {
+        plan.domain.inscribed_ball = true;
+        plan.requested = exact ? cnj_start_count(lattice, CnjDomain::ball)
+                               : static_cast<std::uint64_t>(static_cast<double>(lattice_points) *
+                                                            plan.domain.volume(config.dimension));
+      }
+      break;
     case Method::jitter:
     case Method::random:
       break;
@@ -87,13 +108,23 @@ void SampleConfig::validate() const {
   check_thread_count(threads);
   if (protocol == Protocol::paper && grid * kPaperDelta > 1e6) throw std::invalid_argument("--grid is too large");
   cnj.validate();
-  if (std::find(methods.begin(), methods.end(), Method::cnj) != methods.end()) {
+  const bool has_cnj = std::find(methods.begin(), methods.end(), Method::cnj) != methods.end();
+  if (has_cnj) {
     const double field_frequency = cnj.frequency / lattice().spacing();
     if (!(field_frequency >= kMinNoiseFrequency && field_frequency <= kMaxNoiseFrequency))
       throw std::invalid_argument(fmt::format(
           "--frequency {:g} cycles per lattice spacing with --grid {} is a field frequency of {:g}, outside the "
           "noise's [2^-50, 2^50]",
           cnj.frequency, grid, field_frequency));
+  }
+  if (on == Surface::sphere) {
+    if (dimension < 3) throw std::invalid_argument(fmt::format("--on sphere needs --dim 3..8, got {}", dimension));
+    for (Method m : methods)
+      if (m != Method::cnj && m != Method::random)
+        throw std::invalid_argument(fmt::format("--on sphere takes --methods cnj and random, not {}", to_string(m)));
+    if (compute_rdf) throw std::invalid_argument("--rdf is for points in a cube, not --on sphere");
+  } else if (compute_rdf && has_cnj && cnj.domain == CnjDomain::ball) {
+    throw std::invalid_argument("--rdf's edge correction is for cubes, not --domain ball");
   }
   if (!std::isfinite(pds_radius) || pds_radius < 0.0) throw std::invalid_argument("--pds-radius must be a finite number > 0");
   if (pds_candidates < 1) throw std::invalid_argument("--pds-candidates must be at least 1");
@@ -144,13 +175,27 @@ static PointSet generate_points(const SampleConfig& config, const MethodPlan& pl
   const LatticeSpec lattice = config.lattice();
   switch (plan.method) {
     case Method::cnj: {
-      CnjResult r = curl_noise_jitter(lattice, config.cnj, config.seed, config.threads, [&](double f) {
+      const auto report = [&](double f) {
         if (progress) progress("cnj", f);
-      });
-      notes = fmt::format("noise={} t={:.4g} F={:.4g} rms_move={:.4g} dropped={} skipped_updates={}",
-                          to_string(config.cnj.noise), r.trace_time, r.field_frequency, r.rms_displacement, r.dropped,
-                          r.trace_stats.skipped_updates);
-      displacement = summarize_lattice_displacements(config.dimension, config.grid, lattice.spacing(), r.displacements);
+      };
+      if (config.on == Surface::sphere) {
+        SphereCnjResult r = sphere_curl_noise_jitter(config.dimension, config.grid, config.cnj, config.seed,
+                                                     config.threads, report);
+        notes = fmt::format("on=sphere geodesic noise={} t={:.4g} F={:.4g} rms_move={:.4g} retraced={} kept_at_site={} "
+                            "skipped_updates={}",
+                            to_string(config.cnj.noise), r.trace_time, r.field_frequency, r.rms_displacement,
+                            r.retraced, r.kept_at_site, r.trace_stats.skipped_updates);
+        return std::move(r.points);
+      }
+      CnjResult r = curl_noise_jitter(lattice, config.cnj, config.seed, config.threads, report);
+      notes = fmt::format("noise={} t={:.4g} F={:.4g} rms_move={:.4g} domain={} mode={} dropped={} retraced={} "
+                          "kept_at_site={} skipped_updates={}",
+                          to_string(config.cnj.noise), r.trace_time, r.field_frequency, r.rms_displacement,
+                          to_string(config.cnj.domain), to_string(config.cnj.domain_mode), r.dropped, r.retraced,
+                          r.kept_at_site, r.trace_stats.skipped_updates);
+      if (config.cnj.domain == CnjDomain::cube)  // the ball's clipped lattice has no K^N neighbour structure
+        displacement =
+            summarize_lattice_displacements(config.dimension, config.grid, lattice.spacing(), r.displacements);
       return std::move(r.points);
     }
     case Method::jitter: {
@@ -161,6 +206,10 @@ static PointSet generate_points(const SampleConfig& config, const MethodPlan& pl
       return points;
     }
     case Method::random:
+      if (config.on == Surface::sphere) {
+        notes = "on=sphere geodesic";
+        return uniform_points_on_sphere(config.dimension, plan.requested, config.seed, config.threads);
+      }
       return uniform_random_points(config.dimension, plan.requested, plan.domain, config.seed, config.threads);
     case Method::pds: {
       PoissonDiskOptions o;
@@ -214,8 +263,12 @@ MethodResult run_method(const SampleConfig& config, const MethodPlan& plan, bool
                                             to_string(method), result.points.size(), result.notes));
   if (progress) progress("statistics", 0.0);
   stopwatch.restart();
-  result.nearest = summarize_nearest_neighbours(nearest_neighbour_distances(result.points, config.knn, config.threads),
-                                                result.points);
+  if (config.on == Surface::sphere)  // great-circle distances
+    result.nearest = summarize_geodesic_nearest_neighbours(
+        geodesic_nearest_neighbour_distances(result.points, config.knn, config.threads), config.dimension);
+  else
+    result.nearest = summarize_nearest_neighbours(
+        nearest_neighbour_distances(result.points, config.knn, config.threads), result.points);
   result.seconds_stats = stopwatch.seconds();
   if (config.compute_rdf) {
     if (progress) progress("rdf", 0.0);

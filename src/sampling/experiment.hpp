@@ -12,6 +12,7 @@
 #include "sampling/lattice.hpp"
 #include "sampling/point_set.hpp"
 #include "sampling/sobol.hpp"
+#include "sampling/sphere_jitter.hpp"
 #include "stats/lattice_displacement.hpp"
 #include "stats/nearest_neighbour.hpp"
 #include "stats/radial_distribution.hpp"
@@ -26,7 +27,9 @@ struct SampleConfig {
   std::vector<Method> methods = {Method::cnj, Method::jitter, Method::pds, Method::sobol};
   Protocol protocol = Protocol::paper;
   KnnBackend knn = KnnBackend::nanoflann;
-  CnjOptions cnj;
+  CnjOptions cnj;  // cnj.domain and cnj.domain_mode: where CNJ's points stay and how
+  // sphere: methods cnj and random on the unit sphere S^{N-1} (N >= 3), geodesic statistics.
+  Surface on = Surface::none;
   double pds_radius = 0.0;  // 0: the protocol's (paper: 0.1; unit: 1/K)
   int pds_candidates = 30;
   Scramble scramble = Scramble::owen;

@@ -3,21 +3,31 @@
 
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace dfvn {
 
-// The cube [lo, lo + side]^N.
+// The cube [lo, lo + side]^N, or with `inscribed_ball` the ball inscribed in it (CNJ's --domain ball).
 struct Box {
   double lo = 0.0;
   double side = 1.0;
-  double volume(int dimension) const { return std::pow(side, dimension); }
+  bool inscribed_ball = false;
+  // Ball: pi^(N/2) / Gamma(N/2 + 1) (side / 2)^N.
+  double volume(int dimension) const {
+    const double cube = std::pow(side, dimension);
+    if (!inscribed_ball) return cube;
+    return cube * std::pow(0.25 * std::numbers::pi, 0.5 * dimension) / std::tgamma(0.5 * dimension + 1.0);
+  }
   bool contains(const double* x, int dimension) const {
     for (int j = 0; j < dimension; ++j)
       if (!(x[j] >= lo && x[j] <= lo + side)) return false;
-    return true;
+    if (!inscribed_ball) return true;
+    double from_centre2 = 0.0;
+    for (int j = 0; j < dimension; ++j) from_centre2 += (x[j] - lo - 0.5 * side) * (x[j] - lo - 0.5 * side);
+    return from_centre2 <= 0.25 * side * side;
   }
 };
 

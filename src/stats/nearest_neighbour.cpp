@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "core/dimension.hpp"
 #include "core/parallel.hpp"
@@ -78,6 +79,11 @@ std::vector<double> nearest_neighbour_distances_brute_force(const PointSet& poin
 }
 
 NearestNeighbourSummary summarize_nearest_neighbours(std::vector<double> distances, const PointSet& points) {
+  return summarize_nearest_neighbours(std::move(distances), points.domain.volume(points.dimension), points.dimension);
+}
+
+NearestNeighbourSummary summarize_nearest_neighbours(std::vector<double> distances, double measure,
+                                                     int manifold_dimension) {
   if (distances.empty()) throw std::invalid_argument("no distances to summarise");
   NearestNeighbourSummary s;
   s.points = distances.size();
@@ -91,8 +97,8 @@ NearestNeighbourSummary summarize_nearest_neighbours(std::vector<double> distanc
   const double rank = 0.01 * static_cast<double>(n - 1);
   const auto below = static_cast<std::size_t>(rank);
   s.q01 = distances[below] + (rank - static_cast<double>(below)) * (distances[std::min(below + 1, n - 1)] - distances[below]);
-  const double density = static_cast<double>(n) / points.domain.volume(points.dimension);
-  s.median_scaled = s.median * std::pow(density, 1.0 / points.dimension);
+  const double density = static_cast<double>(n) / measure;
+  s.median_scaled = s.median * std::pow(density, 1.0 / manifold_dimension);
   return s;
 }
 

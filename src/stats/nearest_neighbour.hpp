@@ -38,5 +38,9 @@ struct NearestNeighbourSummary {
 };
 
 NearestNeighbourSummary summarize_nearest_neighbours(std::vector<double> distances, const PointSet& points);
+// The same for points on a manifold of `manifold_dimension` and `measure` (volume or area): the
+// median is scaled by (points / measure)^(1 / manifold_dimension).
+NearestNeighbourSummary summarize_nearest_neighbours(std::vector<double> distances, double measure,
+                                                     int manifold_dimension);
 
 }  // namespace dfvn

@@ -122,6 +122,25 @@ assert np.array_equal(a, b)
 PY
 fi
 
+# CNJ in a domain (Eq. 13) and on the sphere
+"$bin" --dim 4 --grid 6 --methods cnj --quiet --stats "$work/dom.csv" 2>"$work/err" && ok || bad "conformant run: $(cat "$work/err")"
+grep -q "^4,6,cnj,1296,.*mode=conformant dropped=0 " "$work/dom.csv" && ok || bad "conformant CNJ keeps all 6^4 points: $(tail -1 "$work/dom.csv")"
+"$bin" --dim 4 --grid 6 --methods cnj --domain-mode drop --quiet --stats "$work/drop.csv" && ok || bad "drop run"
+grep -q "mode=drop" "$work/drop.csv" && ok || bad "drop mode named in the notes"
+"$bin" --dim 3 --grid 8 --methods cnj --domain ball --protocol unit --quiet --stats "$work/ball.csv" && ok || bad "ball run"
+grep -q "^3,8,cnj,.*domain=ball mode=conformant dropped=0 " "$work/ball.csv" && ok || bad "ball: $(tail -1 "$work/ball.csv")"
+"$bin" --dim 4 --grid 6 --on sphere --quiet --stats "$work/sphere.csv" && ok || bad "sphere run"
+[[ $(grep -c "on=sphere geodesic" "$work/sphere.csv") -eq 2 ]] && ok || bad "sphere: cnj and random rows: $(cat "$work/sphere.csv")"
+expect_error "sample domain" "" --dim 3 --grid 4 --domain torus
+expect_error "sample domain mode" "" --dim 3 --grid 4 --domain-mode keep
+expect_error "sphere in 2D" "" --dim 2 --grid 4 --on sphere
+expect_message "sphere in 2D" "needs --dim 3..8"
+expect_error "sphere methods" "" --dim 3 --grid 4 --on sphere --methods cnj,pds
+# A huge lattice is refused at once, not counted site by site.
+expect_error "ball memory" "" --dim 8 --grid 100 --domain ball --max-memory 1
+expect_error "sphere memory" "" --dim 8 --grid 100 --on sphere --max-memory 1
+expect_error "ball rdf" "" --dim 3 --grid 4 --domain ball --rdf "$work/ballrdf.csv"
+
 # RDF output
 "$bin" --dim 3 --grid 6 --methods jitter,random --rdf "$work/rdf.csv" --rdf-bins 10 --quiet >/dev/null && ok || bad "rdf run"
 head -1 "$work/rdf.csv" | grep -qx "dim,method,r,g" && [[ $(wc -l <"$work/rdf.csv") -eq 21 ]] && ok || bad "rdf csv shape"

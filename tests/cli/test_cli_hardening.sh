@@ -107,15 +107,22 @@ for n in 2 5 8; do
     ok || bad "high frequency sample ${n}D: $(cat "$work/err")"
   expect_finite "sample ${n}D" "$work/rdf-far$n.csv" "$work/stats-far$n.csv" "$work/stats-low$n.csv" "$work/stats-high$n.csv"
 done
-# A large step scale moves many points out of the unit cube: finite statistics of the rest; the
-# largest moves every point out: a clear error.
-"$bin" --dim 5 --grid 4 --methods cnj --step-scale 3 --quiet --stats "$work/stats-step.csv" 2>"$work/err" &&
+# With --domain-mode drop a large step scale moves many points out of the unit cube: finite
+# statistics of the rest; the largest moves every point out: a clear error. Conformant CNJ (the
+# default) keeps every point at any step scale.
+"$bin" --dim 5 --grid 4 --methods cnj --step-scale 3 --domain-mode drop --quiet --stats "$work/stats-step.csv" 2>"$work/err" &&
   ok || bad "large step scale 5D: $(cat "$work/err")"
 expect_finite "large step scale 5D" "$work/stats-step.csv"
-expect_error "every CNJ point dropped" "" --dim 2 --grid 4 --methods cnj --step-scale 1048576
+expect_error "every CNJ point dropped" "" --dim 2 --grid 4 --methods cnj --step-scale 1048576 --domain-mode drop
 expect_message "every CNJ point dropped" "the cnj point set has [01] point"
-expect_error "every CNJ point dropped 5D" "" --dim 5 --grid 4 --methods cnj --step-scale 1048576
+expect_error "every CNJ point dropped 5D" "" --dim 5 --grid 4 --methods cnj --step-scale 1048576 --domain-mode drop
 expect_message "every CNJ point dropped 5D" "the cnj point set has [01] point"
+for n in 2 5; do
+  "$bin" --dim $n --grid 3 --methods cnj --step-scale 1048576 --quiet --stats "$work/stats-huge$n.csv" 2>"$work/err" &&
+    grep -q "^$n,3,cnj,$((3 ** n)),.*dropped=0 " "$work/stats-huge$n.csv" && ok ||
+    bad "conformant CNJ at the largest step scale ${n}D: $(cat "$work/err" "$work/stats-huge$n.csv")"
+  expect_finite "conformant largest step ${n}D" "$work/stats-huge$n.csv"
+done
 "$bin" reproduce table2 --width 8 --height 6 --frequency 1e14 --out "$work/t2high" --quiet >/dev/null 2>"$work/err" &&
   ok || bad "table2 at a high frequency: $(cat "$work/err")"
 "$bin" reproduce table2 --width 8 --height 6 --frequency 1e-15 --out "$work/t2low" --quiet >/dev/null 2>"$work/err" &&

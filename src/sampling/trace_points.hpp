@@ -1,0 +1,89 @@
+// Tracing a whole start set along a field, in parallel and independent of the thread count: the loop
+// shared by curl noise jittering in a domain (sampling/curl_noise_jitter.cpp) and on the sphere
+// (sampling/sphere_jitter.cpp).
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <omp.h>
+#include <vector>
+
+#include "core/parallel.hpp"
+#include "integrate/trace.hpp"
+
+namespace dfvn {
+
+// Progress callback: fraction done in [0, 1]; called from one thread only.
+using ProgressCallback = std::function<void(double)>;
+
+// drop: a trace that ends outside the constraint is reported as not accepted.
+// retrace: it is traced again with 2, 4, ..., 2^kMaxRefinements times the steps (an integration step
+// that jumped across the boundary, where reprojection cannot help, is the only way out of a
+// constrained field); if no refinement ends inside, the point stays at its start, which is inside.
+enum class OnReject { drop, retrace };
+inline constexpr int kMaxRefinements = 6;
+
+struct TracedPoints {
+  std::vector<double> end;               // count x N, row-major, in start order
+  std::vector<unsigned char> accepted;   // per point: the end point satisfies the constraint
+  TraceStats stats;                      // over every trace, refinements included
+  std::uint64_t retraced = 0;            // points traced again with more steps
+  std::uint64_t kept_at_start = 0;       // points no refinement brought to an accepted end
+};
+
+// starts: count x N, row-major. accept(x) says whether an end point satisfies the constraint.
+template <int N, typename Accept>
+TracedPoints trace_points(const DfvnField<N>& field, const TraceOptions& options, const std::vector<double>& starts,
+                          double time, const Accept& accept, OnReject on_reject, int threads,
+                          const ProgressCallback& progress) {
+  const auto count = static_cast<std::int64_t>(starts.size() / N);
+  std::vector<Tracer<N>> tracers;  // [0]: the configured steps; [k]: 2^k times as many
+  for (int k = 0; k <= (on_reject == OnReject::retrace ? kMaxRefinements : 0); ++k) {
+    TraceOptions refined = options;
+    refined.steps = options.steps << k;
+    tracers.emplace_back(field, refined);
+  }
+  TracedPoints out;
+  out.end.resize(starts.size());
+  out.accepted.resize(static_cast<std::size_t>(count));
+  std::atomic<std::int64_t> done{0};
+  std::int64_t retraced = 0, kept = 0;
+  const std::int64_t report_every = std::max<std::int64_t>(count / 100, 1024);
+#pragma omp parallel num_threads(resolve_threads(threads)) reduction(+ : retraced, kept)
+  {
+    TraceStats local;
+#pragma omp for schedule(dynamic, 1024)
+    for (std::int64_t i = 0; i < count; ++i) {
+      const Vec<N> x0 = Eigen::Map<const Vec<N>>(starts.data() + i * N);
+      Vec<N> x = tracers[0].trace(x0, time, &local);
+      bool ok = accept(x);
+      if (!ok && on_reject == OnReject::retrace) {
+        ++retraced;
+        for (std::size_t k = 1; k < tracers.size() && !ok; ++k) {
+          x = tracers[k].trace(x0, time, &local);
+          ok = accept(x);
+        }
+        if (!ok) {
+          x = x0;
+          ok = true;
+          ++kept;
+        }
+      }
+      Eigen::Map<Vec<N>>(out.end.data() + i * N) = x;
+      out.accepted[static_cast<std::size_t>(i)] = ok;
+      if (progress && (i + 1) % report_every == 0) {
+        const std::int64_t d = done.fetch_add(report_every) + report_every;
+        if (omp_get_thread_num() == 0) progress(static_cast<double>(d) / static_cast<double>(count));
+      }
+    }
+#pragma omp critical
+    out.stats += local;
+  }
+  out.retraced = static_cast<std::uint64_t>(retraced);
+  out.kept_at_start = static_cast<std::uint64_t>(kept);
+  return out;
+}
+
+}  // namespace dfvn
