@@ -1,6 +1,7 @@
 // The `field` command's work: evaluate the DFVN field at a table of points and format the result.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -15,6 +16,12 @@ struct FieldQuery {
   FieldOptions field;  // noise basis and frequency
   int threads = 0;  // 0: all cores
 };
+
+// The field at `rows` points (points: rows x N, row-major): velocity (rows x N, row-major) receives
+// c(x) and values (rows x (N-1), row-major) the noise values f_i(x). The numbers do not depend on the
+// thread count. Throws std::invalid_argument, naming the point (1-based) and column, when frequency *
+// coordinate is outside the noise domain (noise/noise_domain.hpp), NaN included; nothing is written then.
+void evaluate_field(const FieldQuery& query, const double* points, std::size_t rows, double* velocity, double* values);
 
 // CSV with header x0..x{N-1},c0..c{N-1},f1..f{N-1} and one row per input point: the point, the
 // field vector c(x) and the N-1 noise values f_i(x), each with 17 significant digits. The bytes do

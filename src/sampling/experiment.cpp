@@ -81,6 +81,8 @@ MethodPlan plan_method(const SampleConfig& config, Method method) {
       plan.domain = paper ? paper_box : Box{0.0, 1.0};
       break;
   }
+  const bool lattice_method = method == Method::cnj || method == Method::jitter;
+  if (config.count > 0 && !lattice_method) plan.requested = config.count;
   return plan;
 }
 
@@ -131,9 +133,9 @@ void SampleConfig::validate() const {
   if (!std::isfinite(max_memory_gib) || max_memory_gib < 0.0) throw std::invalid_argument("--max-memory must be >= 0");
   rdf.validate();
   const LatticeSpec l = lattice();
-  std::uint64_t count = 0;
+  std::uint64_t lattice_points = 0;
   try {
-    count = l.point_count();
+    lattice_points = l.point_count();
   } catch (const std::invalid_argument&) {
     throw std::invalid_argument(fmt::format("--grid {} in {}D gives {}^{} = {:.3g} points, far more than any memory holds",
                                             grid, dimension, grid, dimension, std::pow(double(grid), dimension)));
@@ -167,7 +169,7 @@ void SampleConfig::validate() const {
     throw std::invalid_argument(fmt::format(
         "--grid {} in {}D gives {} points, which need about {} of memory (limit {}); "
         "lower --grid or raise the limit with --max-memory GIB",
-        grid, dimension, count, byte_size(need), byte_size(limit)));
+        grid, dimension, lattice_points, byte_size(need), byte_size(limit)));
 }
 
 static PointSet generate_points(const SampleConfig& config, const MethodPlan& plan, std::string& notes,
@@ -280,6 +282,22 @@ MethodResult run_method(const SampleConfig& config, const MethodPlan& plan, bool
 }
 
 }  // namespace
+
+MethodResult sample_method(const SampleConfig& config, Method method) {
+  SampleConfig one = config;
+  one.methods = {method};
+  one.validate();
+  MethodResult result;
+  result.plan = plan_method(one, method);
+  try {
+    generate_points(one, result);
+  } catch (const std::bad_alloc&) {
+    throw std::runtime_error(out_of_memory_message(one, result.plan));
+  } catch (const std::length_error&) {
+    throw std::runtime_error(out_of_memory_message(one, result.plan));
+  }
+  return result;
+}
 
 std::vector<MethodResult> run_sampling(const SampleConfig& config, bool keep_points, const StageProgress& progress,
                                        const std::function<void(const MethodResult&)>& on_result) {

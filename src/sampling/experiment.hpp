@@ -36,6 +36,10 @@ struct SampleConfig {
   bool compute_rdf = false;
   RdfOptions rdf;
   double max_memory_gib = 0.0;  // 0: 80% of the machine's memory
+  // 0: every method takes the lattice's count (Sobol under the paper protocol: 2^round(log2 K^N)).
+  // Otherwise the methods without a lattice (pds, sobol, random, halton, lhs) are asked for exactly
+  // this many points, and `grid` should be grid_for_count(dimension, count) (sampling/lattice.hpp).
+  std::uint64_t count = 0;
 
   // Throws std::invalid_argument with a message naming the option, including when the point sets
   // would not fit in memory (saying how much they need and how to override).
@@ -73,6 +77,10 @@ using StageProgress = std::function<void(std::string_view stage, double fraction
 
 // Fills result.points, result.notes and (for lattice methods) result.displacement for result.plan.
 void generate_points(const SampleConfig& config, MethodResult& result, const StageProgress& progress = {});
+
+// One point set of `method` under `config` (config.methods is not consulted): validates, plans and
+// generates exactly as run_sampling does, without the statistics. Keeps the points.
+MethodResult sample_method(const SampleConfig& config, Method method);
 
 // Runs every configured method: generate, then nearest-neighbour statistics (and the RDF if asked).
 // `keep_points`: keep each point set in its result (otherwise it is released after its statistics).

@@ -1,5 +1,9 @@
 #include "sampling/lattice.hpp"
 
+#include <algorithm>
+
+#include <fmt/format.h>
+
 #include "core/message_text.hpp"
 
 #include <cmath>
@@ -70,6 +74,21 @@ void LatticeSpec::point(std::uint64_t index, double* out) const {
 
 double jitter_half_width(const LatticeSpec& lattice) {
   return lattice.protocol == Protocol::paper ? 0.5 * kPaperDelta : 0.5 / lattice.grid;
+}
+
+int grid_for_count(int dimension, std::uint64_t count) {
+  if (dimension < 1) throw std::invalid_argument("dimension must be at least 1, got " + std::to_string(dimension));
+  if (count == 0) throw std::invalid_argument("the point count must be at least 1");
+  // K^N in double is exact up to 2^53 and monotone beyond, which is all the comparison needs.
+  const auto lattice_size = [&](int k) { return std::pow(static_cast<double>(k), dimension); };
+  const auto target = static_cast<double>(count);
+  const double root = std::floor(std::pow(target, 1.0 / dimension));
+  if (root >= 0x1p30)
+    throw std::invalid_argument(fmt::format("{} points in {}D need a lattice of more than 2^30 points per axis", count, dimension));
+  int k = std::max(2, static_cast<int>(root));
+  while (k > 2 && lattice_size(k) > target) --k;        // pow's rounding: step to K^N <= count
+  while (lattice_size(k + 1) <= target) ++k;
+  return (lattice_size(k + 1) - target < target - lattice_size(k)) ? k + 1 : k;
 }
 
 double average_neighbour_distance(int dimension) {

@@ -27,6 +27,10 @@ struct LatticeSpec {
 // x_i - site_i for a point set in lattice order (point i moved from site i): K^N x N, row-major.
 std::vector<double> lattice_displacements(const LatticeSpec& lattice, const PointSet& points);
 
+// The lattice size K >= 2 whose K^N is nearest to `count` (the smaller K on a tie): users think in
+// point counts, lattices come in K^N. Throws std::invalid_argument for count 0, a dimension < 1 or K >= 2^30.
+int grid_for_count(int dimension, std::uint64_t count);
+
 // Half-width of the uniform jitter: paper: delta/2 = 0.05 whatever K (PROTOCOL.md); unit: 1/(2K).
 double jitter_half_width(const LatticeSpec& lattice);
 

@@ -1,0 +1,84 @@
+// dfvn.nn_stats and dfvn.rdf: the statistics of `dfvn-sample stats` and `--rdf` on any point array.
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <pybind11/pybind11.h>
+
+#include "core/dimension.hpp"
+#include "stats/point_set_statistics.hpp"
+#include "stats/radial_distribution.hpp"
+#include "numpy_points.hpp"
+
+namespace dfvn::python {
+
+namespace {
+
+// The library's statistics take an owning PointSet: the points are copied once, O(n N) next to the
+// O(n log n) KD-tree work that follows. Throws std::invalid_argument for a point outside [0, side]^N.
+PointSet point_set(const PointRows& in, double domain_side) {
+  PointSet points{in.dimension, std::vector<double>(in.data, in.data + in.rows * in.dimension), Box{0.0, domain_side}};
+  if (!(domain_side > 0.0) || !std::isfinite(domain_side))
+    throw py::value_error("domain_side must be a finite number > 0, got " + std::to_string(domain_side));
+  check_point_set(points);
+  return points;
+}
+
+py::dict nn_stats(const PointArray& array, double domain_side, const std::string& knn, int threads) {
+  const PointSet points = point_set(point_rows(array, 1, kMaxDimension, 2), domain_side);
+  PointSetStatisticsOptions options;
+  options.knn = parse_knn_backend(knn);
+  options.threads = threads;
+  NearestNeighbourSummary s;
+  {
+    py::gil_scoped_release unlocked;
+    s = measure_point_set(points, options).nearest;
+  }
+  py::dict out;
+  out["points"] = s.points;
+  out["min"] = s.min;
+  out["q01"] = s.q01;
+  out["median"] = s.median;
+  out["mean"] = s.mean;
+  out["median_scaled"] = s.median_scaled;
+  return out;
+}
+
+py::tuple rdf(const PointArray& array, double domain_side, double r_max, int bins, std::uint64_t max_queries,
+              std::uint64_t seed, int threads) {
+  const PointSet points = point_set(point_rows(array, kMinDimension, kMaxDimension, 2), domain_side);
+  RdfOptions options;
+  options.r_max = r_max;
+  options.bins = bins;
+  options.max_queries = max_queries;
+  options.validate();
+  RdfCurve curve;
+  {
+    py::gil_scoped_release unlocked;
+    curve = radial_distribution(points, options, seed, threads);
+  }
+  return py::make_tuple(array_owning(std::move(curve.r)), array_owning(std::move(curve.g)));
+}
+
+}  // namespace
+
+void bind_stats(py::module_& module) {
+  using namespace pybind11::literals;
+  module.def("nn_stats", &nn_stats, "points"_a, py::kw_only(), "domain_side"_a = 1.0, "knn"_a = "nanoflann",
+             "threads"_a = 0,
+             R"(Nearest-neighbour statistics of a point set in [0, domain_side]^N, N = 1..8 (Table 1's).
+
+Returns a dict: points, min, q01 (1% quantile), median, mean and median_scaled (the median times
+(points / volume)^(1/N): 1 for a cubic lattice), as `dfvn-sample stats` computes them. knn: the
+exact KD-tree, 'nanoflann' or 'flann' (the same distances).)");
+  module.def("rdf", &rdf, "points"_a, py::kw_only(), "domain_side"_a = 1.0, "r_max"_a = 0.0, "bins"_a = 50,
+             "max_queries"_a = 20000, "seed"_a = 1, "threads"_a = 0,
+             R"(Radial distribution function g(r) of a point set in [0, domain_side]^N, N = 2..8, with the
+translation edge correction (E g = 1 for uniform random points). Returns (r, g): bin centres and values.
+
+r_max: 0 = 2.5 mean spacings; bins: number of bins; max_queries: a seeded subset of about this many
+query points (0 = all); seed: which subset. As `dfvn-sample --rdf` computes it.)");
+}
+
+}  // namespace dfvn::python

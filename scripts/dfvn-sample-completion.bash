@@ -1,0 +1,57 @@
+# bash completion for dfvn-sample (installed as share/bash-completion/completions/dfvn-sample).
+# Options and their allowed values are read from the program's own --help, so they always match the
+# installed version: `--noise <TAB>` offers what `--noise TEXT:{a,b,c}` lists.
+
+# The --help text of the subcommand path given so far ("sample" when none is named: it is the default).
+_dfvn_sample_help() {
+  local program=$1
+  shift
+  (($#)) || set -- sample
+  "$program" "$@" --help 2>/dev/null
+}
+
+_dfvn_sample() {
+  local cur prev words cword
+  _init_completion || return
+
+  local program=${words[0]}
+  # Subcommands: the first word may name one of the top level's, the next one of its own, and so on.
+  local -a path=()
+  local i subcommands="sample field stats reproduce"
+  for ((i = 1; i < cword; i++)); do
+    [[ " $subcommands " == *" ${words[i]} "* ]] || break
+    path+=("${words[i]}")
+    subcommands=$(_dfvn_sample_help "$program" "${path[@]}" |
+      sed -n '/^Subcommands:$/,/^$/s/^  \([a-z][a-z0-9-]*\) .*/\1/p' | tr '\n' ' ')
+  done
+  local at_subcommand=$((i == cword))
+  local help
+  help=$(_dfvn_sample_help "$program" "${path[@]}")
+
+  # The value of an option that takes one: its {choices}, a directory, a file, or nothing to offer.
+  if [[ $prev == -* ]]; then
+    local line long
+    line=$(grep -E -- "^ +(-[a-zA-Z],)?$prev( |=|$)|^ +$prev,--" <<<"$help" | head -n 1)
+    long=$(grep -oE -- '--[a-z][a-z0-9-]*' <<<"$line" | head -n 1)
+    local takes_value="^ +(-[a-zA-Z],)?$long (TEXT|INT|UINT|FLOAT)"
+    if [[ -n $long && $line =~ $takes_value ]]; then
+      if [[ $line =~ \{([^}]*)\} ]]; then
+        COMPREPLY=($(compgen -W "${BASH_REMATCH[1]//,/ }" -- "$cur"))
+      elif [[ $long == --methods ]]; then  # a comma list: complete the name after the last comma
+        COMPREPLY=($(compgen -P "${cur%"${cur##*,}"}" -W "cnj jitter pds sobol random halton lhs" -- "${cur##*,}"))
+        compopt -o nospace
+      elif [[ $long == @(--out|--points) ]]; then
+        _filedir -d
+      elif [[ $line =~ $long\ TEXT ]]; then
+        _filedir
+      fi
+      return
+    fi
+  fi
+
+  if [[ $cur != -* && $at_subcommand == 1 && -n ${subcommands// /} ]]; then
+    COMPREPLY=($(compgen -W "$subcommands" -- "$cur"))
+  else
+    COMPREPLY=($(compgen -W "$(grep -oE -- '^ +(-[a-zA-Z],)?--[a-z][a-z0-9-]*' <<<"$help" | sed 's/^ *//; s/,/ /')" -- "$cur"))
+  fi
+} && complete -F _dfvn_sample dfvn-sample

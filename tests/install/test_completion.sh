@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# The bash completion script completes subcommands, options and option values of the real binary.
+# Environment: DFVN_SAMPLE (the binary), COMPLETION (the script).
+set -uo pipefail
+: "${DFVN_SAMPLE:?}" "${COMPLETION:?}"
+fail() { echo "FAIL: $*" >&2; exit 1; }
+completion_lib=/usr/share/bash-completion/bash_completion
+[[ -r $completion_lib ]] || fail "$completion_lib is missing (apt-get install bash-completion)"
+# bash_completion reads its own settings and expects an interactive-like shell; these are enough.
+source "$completion_lib"
+source "$COMPLETION"
+complete -p dfvn-sample >/dev/null || fail "the script registers no completion for dfvn-sample"
+
+# The completions offered for a command line whose last word is being typed.
+complete_line() {
+  local line="$DFVN_SAMPLE $1"
+  COMP_LINE=$line
+  COMP_POINT=${#line}
+  read -r -a COMP_WORDS <<<"$line"
+  [[ $line == *" " ]] && COMP_WORDS+=("")
+  COMP_CWORD=$((${#COMP_WORDS[@]} - 1))
+  COMPREPLY=()
+  _dfvn_sample dfvn-sample "${COMP_WORDS[COMP_CWORD]}" "${COMP_WORDS[COMP_CWORD - 1]}"
+  printf '%s\n' "${COMPREPLY[@]}" | sort | tr '\n' ' '
+}
+
+expect() {  # expect LINE WORD...: every WORD is offered
+  local got
+  got=" $(complete_line "$1")"
+  shift
+  for word in "$@"; do [[ $got == *" $word "* ]] || fail "completing '$line_shown' offered '$got', not '$word'"; done
+}
+
+line_shown="dfvn-sample re"; expect "re" reproduce
+line_shown="dfvn-sample "; expect "" sample field stats reproduce
+line_shown="dfvn-sample reproduce t"; expect "reproduce t" table1 table2
+line_shown="dfvn-sample field --d"; expect "field --d" --dim --diagnose --diagnose-points
+line_shown="dfvn-sample --noise "; expect "--noise " turning-bands simplex quintic-gradient
+line_shown="dfvn-sample sample --protocol u"; expect "sample --protocol u" unit
+line_shown="dfvn-sample --methods cnj,s"; expect "--methods cnj,s" cnj,sobol
+got=$(complete_line "field --dim ")
+[[ -z ${got// /} ]] || fail "a number option (--dim) offered '$got'"
+echo "ok: subcommands, options and their values complete"

@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# `cmake --install` into a temporary prefix, then use the installed tree as a user would: the binary,
+# the man page and completion, and a consumer project built with find_package(dfvn) and with
+# pkg-config, whose field values must equal the installed dfvn-sample's to the last bit.
+# Environment: DFVN_BUILD_DIR, DFVN_SOURCE_DIR, DFVN_LIBDIR (CMAKE_INSTALL_LIBDIR), DFVN_DATA_DIR,
+# DFVN_MAN_PAGE (1 when help2man made one), CXX (the compiler).
+set -euo pipefail
+: "${DFVN_BUILD_DIR:?}" "${DFVN_SOURCE_DIR:?}" "${DFVN_LIBDIR:?}" "${DFVN_DATA_DIR:?}" "${DFVN_MAN_PAGE:?}" "${CXX:?}"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+cmake --install "$DFVN_BUILD_DIR" --prefix "$work/install" >/dev/null
+# The tree is relocatable: everything below is used from where it was moved to.
+mv "$work/install" "$work/moved"
+prefix=$work/moved
+
+for path in bin/dfvn-sample "$DFVN_LIBDIR/libdfvn.so" include/dfvn/field/dfvn_field.hpp \
+            include/dfvn/sampling/experiment.hpp "$DFVN_LIBDIR/cmake/dfvn/dfvnConfig.cmake" \
+            "$DFVN_LIBDIR/cmake/dfvn/dfvnConfigVersion.cmake" "$DFVN_LIBDIR/cmake/dfvn/dfvnTargets.cmake" \
+            "$DFVN_LIBDIR/pkgconfig/dfvn.pc" "$DFVN_DATA_DIR/plot_figure4.sh" \
+            share/bash-completion/completions/dfvn-sample; do
+  [[ -e $prefix/$path ]] || fail "not installed: $path"
+done
+# Headers that pull in private dependencies (OpenMP, nanoflann) stay private.
+for path in include/dfvn/core/parallel.hpp include/dfvn/stats/kd_tree.hpp include/dfvn/integrate/trace_impl.hpp; do
+  [[ ! -e $prefix/$path ]] || fail "installed, but private: $path"
+done
+echo "ok: the tree"
+
+# The installed binary runs from the moved tree, finding its library without LD_LIBRARY_PATH.
+version=$(env -u LD_LIBRARY_PATH "$prefix/bin/dfvn-sample" --version </dev/null)
+[[ $version == "dfvn-sample "[0-9]* ]] || fail "--version printed '$version'"
+echo "ok: $version"
+
+if [[ $DFVN_MAN_PAGE == 1 ]]; then
+  man_page=$prefix/share/man/man1/dfvn-sample.1
+  [[ -e $man_page ]] || fail "help2man is there but the man page is not installed"
+  grep -q '^\.TH DFVN-SAMPLE "1"' "$man_page" || fail "the man page has no .TH DFVN-SAMPLE header"
+  grep -q 'dim' "$man_page" || fail "the man page does not show the options of --help"
+  echo "ok: the man page"
+fi
+
+# Every public header compiles on its own include path (no private dependency, no missing include).
+pc_path=$prefix/$DFVN_LIBDIR/pkgconfig
+read -r -a cflags <<<"$(PKG_CONFIG_PATH=$pc_path pkg-config --cflags dfvn)"
+read -r -a libs <<<"$(PKG_CONFIG_PATH=$pc_path pkg-config --libs dfvn)"
+[[ " ${cflags[*]} " == *" -I$pc_path/"* ]] || fail "pkg-config --cflags gives '${cflags[*]}', not this prefix"
+(cd "$prefix/include" && find dfvn -name '*.hpp' | sort | sed 's/.*/#include <&>/') >"$work/all_headers.cpp"
+"$CXX" -std=c++20 -fsyntax-only "${cflags[@]}" "$work/all_headers.cpp" || fail "the installed headers do not compile"
+echo "ok: $(wc -l <"$work/all_headers.cpp") headers compile"
+
+# The field at one point, from the installed command line: its c0..c2 columns.
+point=(0.25 -1.5 3.125)
+expected=$(printf '%s,%s,%s\n' "${point[@]}" |
+  "$prefix/bin/dfvn-sample" field --dim 3 --seed 7 --frequency 0.5 --noise turning-bands | tail -n 1 | cut -d, -f4-6)
+[[ -n $expected ]] || fail "dfvn-sample field printed nothing"
+
+# A consumer project configured against the installed package: find_package(dfvn) -> dfvn::dfvn.
+cmake -S "$DFVN_SOURCE_DIR/tests/install/consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$prefix" \
+      -DCMAKE_CXX_COMPILER="$CXX" -DCMAKE_BUILD_TYPE=Release >"$work/configure.log" 2>&1 ||
+  { cat "$work/configure.log" >&2; fail "the consumer project does not configure"; }
+cmake --build "$work/consumer" >"$work/build.log" 2>&1 || { cat "$work/build.log" >&2; fail "the consumer does not build"; }
+got=$("$work/consumer/consumer" "${point[@]}")
+[[ $got == "$expected" ]] || fail "find_package consumer: c = $got, dfvn-sample field: $expected"
+echo "ok: find_package(dfvn) consumer: c = $got"
+
+# The same consumer compiled by hand with pkg-config.
+"$CXX" -std=c++20 "${cflags[@]}" "$DFVN_SOURCE_DIR/tests/install/consumer/main.cpp" "${libs[@]}" \
+       -Wl,-rpath,"$prefix/$DFVN_LIBDIR" -o "$work/consumer_pc" || fail "the pkg-config build fails"
+got=$("$work/consumer_pc" "${point[@]}")
+[[ $got == "$expected" ]] || fail "pkg-config consumer: c = $got, dfvn-sample field: $expected"
+echo "ok: pkg-config consumer: c = $got"

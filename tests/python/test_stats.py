@@ -1,0 +1,77 @@
+"""dfvn.nn_stats and dfvn.rdf: the command line's statistics on NumPy arrays."""
+import csv
+import io
+
+import numpy as np
+import pytest
+
+import dfvn
+
+
+def test_nn_stats_equal_the_cli_stats_command(cli, tmp_path):
+    points = dfvn.sample("cnj", 4, grid=6, seed=5)
+    np.save(tmp_path / "cnj.npy", points)
+    row = next(csv.DictReader(io.StringIO(cli("stats", "--input", tmp_path / "cnj.npy"))))
+    stats = dfvn.nn_stats(points)
+    assert stats["points"] == len(points) == int(row["points"])
+    for name in ("min", "median", "mean", "median_scaled"):  # the CLI prints 9 significant digits
+        assert float(row["nn_" + name]) == pytest.approx(stats[name], rel=1e-8, abs=0), name
+
+
+def test_nn_stats_of_a_lattice_are_its_spacing():
+    axis = (np.arange(6) + 0.5) / 6
+    lattice = np.stack(np.meshgrid(axis, axis, axis, indexing="ij"), -1).reshape(-1, 3)
+    stats = dfvn.nn_stats(lattice)
+    for name in ("min", "median", "mean", "q01"):
+        assert stats[name] == pytest.approx(1 / 6, rel=1e-12)
+    assert stats["median_scaled"] == pytest.approx(1.0, rel=1e-12)
+    assert dfvn.nn_stats(np.array([0.1, 0.4, 0.5]))["min"] == pytest.approx(0.1)  # 1-D points
+
+
+def test_nn_stats_agree_with_brute_force_for_both_kd_trees():
+    points = np.random.default_rng(4).random((400, 6))
+    distance = np.sqrt(((points[:, None, :] - points[None, :, :]) ** 2).sum(-1))
+    np.fill_diagonal(distance, np.inf)
+    nearest = distance.min(axis=1)
+    for knn in ("nanoflann", "flann"):
+        stats = dfvn.nn_stats(points, knn=knn)
+        assert stats["min"] == pytest.approx(nearest.min(), rel=1e-14)
+        assert stats["median"] == pytest.approx(np.median(nearest), rel=1e-14)
+        assert stats["q01"] == pytest.approx(np.quantile(nearest, 0.01), rel=1e-14)
+
+
+def test_rdf_equals_the_cli_rdf(cli, tmp_path):
+    cli("--dim", 3, "--grid", 8, "--seed", 6, "--protocol", "unit", "--methods", "jitter,sobol",
+        "--rdf", tmp_path / "rdf.csv", "--stats", tmp_path / "stats.csv", "--quiet")
+    rows = list(csv.DictReader(open(tmp_path / "rdf.csv")))
+    for method in ("jitter", "sobol"):
+        r, g = dfvn.rdf(dfvn.sample(method, 3, grid=8, seed=6), seed=6)
+        expected = [row for row in rows if row["method"] == method]
+        assert len(expected) == len(r) == len(g) == 50
+        np.testing.assert_allclose([float(row["r"]) for row in expected], r, rtol=1e-8)
+        np.testing.assert_allclose([float(row["g"]) for row in expected], g, rtol=1e-8, atol=1e-12)
+
+
+def test_rdf_of_uniform_random_points_is_about_one():
+    points = np.random.default_rng(1).random((20000, 2))
+    r, g = dfvn.rdf(points, bins=20, r_max=0.05)
+    assert r.shape == g.shape == (20,)
+    assert np.all(np.abs(g[5:] - 1.0) < 0.15)
+
+
+@pytest.mark.parametrize(
+    "function, points, kwargs, words",
+    [
+        (dfvn.nn_stats, np.zeros((1, 3)), {}, "at least 2"),
+        (dfvn.nn_stats, np.full((3, 2), 2.0), {}, "outside|domain"),
+        (dfvn.nn_stats, np.random.default_rng(0).random((5, 9)), {}, "columns"),
+        (dfvn.nn_stats, np.random.default_rng(0).random((5, 2)), {"knn": "annoy"}, "annoy"),
+        (dfvn.nn_stats, np.random.default_rng(0).random((5, 2)), {"domain_side": 0.0}, "domain_side"),
+        (dfvn.rdf, np.random.default_rng(0).random((5, 2)), {"bins": 0}, "bins"),
+        (dfvn.rdf, np.random.default_rng(0).random((5, 1)), {}, "columns"),
+        (dfvn.rdf, np.array([[0.5, np.nan], [0.1, 0.2]]), {}, "point|nan|NaN"),
+    ],
+)
+def test_stats_refuse_bad_input_with_a_clear_error(function, points, kwargs, words):
+    with pytest.raises(ValueError, match=words):
+        function(points, **kwargs)
