@@ -442,7 +442,10 @@ struct SampleCommand {
         stats += realization_rows.back();
         realization_rows.back().pop_back();
         rdf += dfvn::rdf_csv_rows(config, r);
-        if (config.count > 0) report_saturation(r);
+        if (config.count > 0) {
+          reporter->finish();  // a warning starts on a line of its own
+          report_saturation(r);
+        }
       }
       runs.push_back({config.seed, std::move(results)});
     }

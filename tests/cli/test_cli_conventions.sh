@@ -124,6 +124,22 @@ PY
   $python -c 'import json, sys; s = json.load(open(sys.argv[1]))["summary"]["jitter"]; assert s["nearest_neighbour.median"]["sd"] > 0, s' "$work/real.json" &&
   ok || bad "json summary over realizations"
 
+# stats --json: every set's statistics, a summary over the sets of a dat file; -o and --no-timing.
+printf '0.1 0.2\n0.3 0.4\n0.8 0.1\n#\n0.5 0.5\n0.2 0.9\n0.7 0.3\n' >"$work/two.dat"
+"$bin" stats --input "$work/two.dat" --discrepancy --no-timing --json "$work/two.json" -o "$work/two.csv" 2>"$work/err" &&
+  $python - "$work/two.json" "$work/two.csv" <<'PY' && ok || bad "stats --json: $(cat "$work/err")"
+import csv, json, sys
+run = json.load(open(sys.argv[1]))
+rows = list(csv.DictReader(open(sys.argv[2])))
+assert run["parameters"]["format"] == "dat" and run["parameters"]["discrepancy"] is True
+assert [s["set"] for s in run["sets"]] == [0, 1] and all(s["dim"] == 2 and s["points"] == 3 for s in run["sets"])
+for s, r in zip(run["sets"], rows):
+    assert abs(s["discrepancy"]["cd"] - float(r["cd"])) <= 1e-15 * s["discrepancy"]["cd"]
+    assert abs(s["nearest_neighbour"]["q01"] - float(r["nn_q01"])) <= 1e-8 and "seconds" not in s
+assert r["seconds_stats"] == "" and run["summary"]["nearest_neighbour.min"]["sd"] >= 0
+PY
+expect_error "stats json and csv on stdout" "standard output" stats --input "$work/two.dat" --json -
+
 # Points: to standard output with one method, and the dat format (what numpy.loadtxt, UTK and pspec read).
 "$bin" -d 3 --grid 4 -q --methods sobol --no-stats --points - >"$work/p.csv" 2>"$work/err" &&
   head -1 "$work/p.csv" | grep -qx "x0,x1,x2" && [[ $(wc -l <"$work/p.csv") -eq 65 ]] && ok || bad "--points - : $(cat "$work/err")"
