@@ -449,7 +449,7 @@ struct SampleCommand {
       }
       runs.push_back({config.seed, std::move(results)});
     }
-    reporter->finish();
+    reporter->complete();
     if (realizations > 1)
       stats += dfvn::realization_summary_rows(stats.substr(0, stats.find('\n')), realization_rows, {"dim", "grid", "method"}, "seed");
     config.seed = common.seed;
@@ -588,7 +588,7 @@ struct ReproduceCommand {
     make_output_dir(study.out_dir);
     dfvn::ProgressReporter* reporter = progress.make();
     const auto result = dfvn::run_cnj_study(study, reporter->callback());
-    reporter->finish();
+    reporter->complete();
     std::fputs(dfvn::write_cnj_study(result, log).c_str(), stdout);
   }
 
@@ -623,7 +623,7 @@ struct ReproduceCommand {
     make_output_dir(integration.out_dir);
     dfvn::ProgressReporter* reporter = progress.make();
     const auto result = dfvn::run_integration(integration, reporter->callback());
-    reporter->finish();
+    reporter->complete();
     std::fputs(dfvn::write_integration(result, log).c_str(), stdout);
   }
 
@@ -639,7 +639,7 @@ struct ReproduceCommand {
     make_output_dir(out1);
     dfvn::ProgressReporter* reporter = progress.make();
     const auto result = dfvn::run_table1(config, reporter->callback());
-    reporter->finish();
+    reporter->complete();
     std::fputs(dfvn::write_table1(config, result, log).c_str(), stdout);
   }
 
@@ -662,7 +662,7 @@ struct ReproduceCommand {
     make_output_dir(out2);
     dfvn::ProgressReporter* reporter = progress.make();
     const auto result = dfvn::run_table2(table2, reporter->callback());
-    reporter->finish();
+    reporter->complete();
     std::fputs(dfvn::write_table2(out2, result, log).c_str(), stdout);
   }
 };
@@ -764,7 +764,7 @@ struct StatsCommand {
       dfvn::write_spectrum_files(spectrum_prefix, spectrum,
                                  [](const std::string& line) { std::fprintf(stderr, "%s: %s\n", kProgram, line.c_str()); });
     }
-    reporter->finish();
+    reporter->complete();
     if (!json_path.empty()) dfvn::write_file_atomically(json_path, dfvn::point_statistics_json(run));
     dfvn::write_file_atomically(output, csv);
   }

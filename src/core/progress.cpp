@@ -100,4 +100,12 @@ void ProgressReporter::finish() {
   line_open_ = false;
 }
 
+void ProgressReporter::complete() {
+  finish();
+  if (mode_ != ProgressMode::always || terminal_ || stage_index_ == 0) return;
+  std::fprintf(out_, "%s: done: %d stage%s in %s\n", prefix_.c_str(), stage_index_, stage_index_ == 1 ? "" : "s",
+               format_duration(total_.seconds()).c_str());
+  std::fflush(out_);
+}
+
 }  // namespace dfvn

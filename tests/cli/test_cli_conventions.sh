@@ -171,6 +171,7 @@ printf '1 2 3 4 5 6 7 8 9\n' | "$bin" field >"$work/out" 2>"$work/err"
 for stage in "\[1/6\] cnj " "\[2/6\] cnj statistics" "\[3/6\] cnj rdf" "\[4/6\] pds " "\[5/6\] pds statistics" "\[6/6\] pds rdf"; do
   grep -q "^dfvn-sample: $stage.*elapsed" "$work/plog" && ok || bad "progress log lacks $stage: $(cat "$work/plog")"
 done
+grep -q "^dfvn-sample: done: 6 stages in " "$work/plog" && ok || bad "progress log has no closing line: $(tail -1 "$work/plog")"
 grep -q $'\r' "$work/plog" && bad "carriage return in a log" || ok
 "$bin" -d 3 --grid 6 -s 2 --methods cnj,pds --rdf "$work/prdf2.csv" --no-timing -o "$work/pn.csv" 2>"$work/plog2" &&
   [[ ! -s $work/plog2 ]] && cmp -s "$work/pa.csv" "$work/pn.csv" && ok || bad "progress changed the output or auto wrote a log"

@@ -66,9 +66,11 @@ TEST(Progress, AlwaysWritesALineAsEachStageStarts) {
     reporter.report("cnj statistics", 0.0);
     reporter.report("cnj statistics", 0.7);
     reporter.report("cnj statistics", 0.1);  // a smaller fraction: the next stage (another realization)
+    reporter.complete();
   }
   const std::string text = out.text();
-  EXPECT_EQ(count_lines(text), 3) << text;
+  EXPECT_EQ(count_lines(text), 4) << text;
+  EXPECT_NE(text.find("prog: done: 3 stages in "), std::string::npos) << text;
   EXPECT_NE(text.find("prog: [1/3] cnj 0.0%"), std::string::npos) << text;
   EXPECT_NE(text.find("prog: [2/3] cnj statistics 0.0%"), std::string::npos) << text;
   EXPECT_NE(text.find("prog: [3/3] cnj statistics 10.0%"), std::string::npos) << text;

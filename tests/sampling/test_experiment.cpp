@@ -192,7 +192,7 @@ TEST(Experiment, StatsColumnsAreNumbersOrEmpty) {
   const auto column = [&](const std::string& name) {
     return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
   };
-  for (const std::string& name : {"nn_q01", "rms_displacement", "frequency", "field_frequency", "trace_time", "dropped",
+  for (const char* name : {"nn_q01", "rms_displacement", "frequency", "field_frequency", "trace_time", "dropped",
                                   "skipped_updates", "radius", "saturated", "notes"})
     ASSERT_LT(column(name), header.size()) << name;
   const auto results = run_sampling(c, false);
@@ -208,7 +208,7 @@ TEST(Experiment, StatsColumnsAreNumbersOrEmpty) {
   EXPECT_EQ(cnj[column("domain_side")], "1.0");  // a real, even when whole
   EXPECT_FALSE(pds[column("radius")].empty());
   EXPECT_TRUE(pds[column("saturated")] == "0" || pds[column("saturated")] == "1");
-  for (const std::string& name : {"frequency", "trace_time", "dropped", "radius", "saturated", "rms_displacement"})
+  for (const char* name : {"frequency", "trace_time", "dropped", "radius", "saturated", "rms_displacement"})
     EXPECT_EQ(sobol[column(name)], "") << name;
   EXPECT_EQ(sobol[column("domain_side")], "0.6");
   EXPECT_NE(split_row(stats_csv_row(c, results[2], true))[column("seconds_generate")], "");
