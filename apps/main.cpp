@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iostream>
 #include <new>
+#include <optional>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -18,9 +19,11 @@
 #include "field/diagnose.hpp"
 #include "core/message_text.hpp"
 #include "core/parallel.hpp"
+#include "core/progress.hpp"
 #include "field/evaluate_points.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
+#include "io/json_report.hpp"
 #include "io/point_file.hpp"
 #include "reproduce/cnj_study.hpp"
 #include "noise/noise_domain.hpp"
@@ -108,10 +111,8 @@ const CLI::Validator kThreadCount(
     "THREADS");
 
 // --dim, checked against the dimensions the library instantiates.
-void add_dimension_option(CLI::App& cmd, int& dimension, const std::string& help) {
-  cmd.add_option("--dim", dimension, help)
-      ->capture_default_str()
-      ->check(CLI::Range(dfvn::kMinDimension, dfvn::kMaxDimension));
+CLI::Option* add_dimension_option(CLI::App& cmd, int& dimension, const std::string& help) {
+  return cmd.add_option("-d,--dim", dimension, help)->check(CLI::Range(dfvn::kMinDimension, dfvn::kMaxDimension));
 }
 
 // --noise: the basis of the N-1 noise functions.
@@ -131,7 +132,7 @@ struct CommonOptions {
 };
 
 void add_common_options(CLI::App& app, CommonOptions& common) {
-  app.add_option("--seed", common.seed, "Seed of every random choice; same seed, same output")
+  app.add_option("-s,--seed", common.seed, "Seed of every random choice; same seed, same output")
       ->capture_default_str()
       ->check(kUnsignedInteger);
   app.add_option("--threads", common.threads, "Worker threads: 0 = all cores, at most 4 x the cores (output never depends on it)")
@@ -139,9 +140,34 @@ void add_common_options(CLI::App& app, CommonOptions& common) {
       ->check(kThreadCount);
 }
 
+// Progress on stderr: --progress and -q/--quiet, shared by the subcommands that run long.
+struct ProgressOptions {
+  std::string mode = "auto";
+  bool quiet = false;
+
+  void add_to(CLI::App& app) {
+    app.add_option("--progress", mode,
+                   "Progress on stderr: auto (a live line on a terminal, otherwise a plain line every 5 s of long\n"
+                   "work), always (also a line as each stage starts) or never")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"auto", "always", "never"}));
+    app.add_flag("-q,--quiet", quiet, "No progress on stderr (same as --progress never)");
+  }
+  // A reporter on stderr; `stages`: how many stages the run reports (0: unknown).
+  dfvn::ProgressReporter* make(int stages = 0) {
+    reporter_.emplace(quiet ? dfvn::ProgressMode::never : dfvn::parse_progress_mode(mode), stderr,
+                      ::isatty(STDERR_FILENO) == 1, kProgram);
+    reporter_->set_stage_count(stages);
+    return &*reporter_;
+  }
+
+ private:
+  std::optional<dfvn::ProgressReporter> reporter_;
+};
+
 struct FieldCommand {
   CommonOptions common;
-  int dimension = 3;
+  int dimension = 0;  // 0: the input's column count (3 with --diagnose)
   double frequency = 1.0;
   std::string noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
   std::string input;
@@ -152,10 +178,13 @@ struct FieldCommand {
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
         "field",
-        "Evaluate the divergence-free field at points read as CSV (N columns a line, optional header).\n"
+        "Evaluate the divergence-free field at points read as text: comma-separated (optional header) or\n"
+        "whitespace-separated (numpy.savetxt's default; '#' lines are comments), one point a line.\n"
         "Writes x0..x{N-1},c0..c{N-1},f1..f{N-1}: the point, the field vector c = cross(grad f_1..f_{N-1})\n"
         "(Eq. 8, RMS |c| = 1) and the N-1 noise values, with 17 significant digits.");
-    add_dimension_option(*cmd, dimension, "Dimension N of the points (2..8)");
+    add_dimension_option(*cmd, dimension,
+                         "Dimension N of the points (2..8); default: the column count of the input's first line\n"
+                         "(3 with --diagnose)");
     cmd->add_option("--frequency", frequency,
                     "Noise frequency F in cycles per unit length (one cycle = 2 pi / k_eff of the basis):\n"
                     "f_i(x) = (A/s) n_i(s x) with s = 2 pi F / k_eff; in [2^-50, 2^50], and every |F x_j| must be\n"
@@ -164,7 +193,8 @@ struct FieldCommand {
         ->check(kNoiseFrequency);
     add_noise_option(*cmd, noise);
     CLI::Option* input_option =
-        cmd->add_option("--input", input, "CSV file of points (default: standard input)")->check(CLI::ExistingFile);
+        cmd->add_option("--input", input, "Point file, CSV or whitespace-separated (default: standard input)")
+            ->check(CLI::ExistingFile);
     CLI::Option* diagnose_flag = cmd->add_flag(
         "--diagnose", diagnose,
         "Instead of reading points, measure the field on uniform random points and write one CSV row: RMS |c|,\n"
@@ -177,16 +207,20 @@ struct FieldCommand {
     cmd->add_option("--periods", diagnosis.periods, "With --diagnose: the points fill [0, periods / F]^N")
         ->capture_default_str()
         ->check(CLI::Range(1e-3, 1e9));
-    cmd->add_option("--output", output, "Output CSV file, written whole or not at all ('-' = standard output)")
+    cmd->add_option("-o,--output", output, "Output CSV file, written whole or not at all ('-' = standard output)")
         ->capture_default_str();
     add_common_options(*cmd, common);
     cmd->callback([this] { run(); });
   }
 
+  std::string input_name() const {
+    return input.empty() ? std::string("standard input") : dfvn::quote_for_message(input, dfvn::kMaxPathEchoChars);
+  }
+
   void run() {
     if (output != "-") dfvn::check_writable(output);
     if (diagnose) {
-      diagnosis.dimension = dimension;
+      diagnosis.dimension = dimension > 0 ? dimension : 3;
       diagnosis.field = {dfvn::parse_noise_basis(noise), frequency};
       diagnosis.seed = common.seed;
       diagnosis.threads = common.threads;
@@ -197,26 +231,27 @@ struct FieldCommand {
     dfvn::PointTable points;
     try {
       if (input.empty()) {
-        points = dfvn::read_points_csv(std::cin, dimension);
+        points = dfvn::read_points_text(std::cin, dimension);
       } else {
         std::ifstream in(input);
-        if (!in) fail("cannot read " + dfvn::quote_for_message(input, dfvn::kMaxPathEchoChars));
-        points = dfvn::read_points_csv(in, dimension);
+        if (!in) fail("cannot read " + input_name());
+        points = dfvn::read_points_text(in, dimension);
       }
     } catch (const dfvn::InputError& e) {
-      fail((input.empty() ? std::string("standard input") : dfvn::quote_for_message(input, dfvn::kMaxPathEchoChars)) + ", " +
-           e.what());
+      fail(input_name() + ", " + e.what());
     }
+    if (points.dimension < dfvn::kMinDimension || points.dimension > dfvn::kMaxDimension)
+      fail(fmt::format("{}: the first line has {} columns; the field is defined in {}..{} dimensions", input_name(),
+                       points.dimension, dfvn::kMinDimension, dfvn::kMaxDimension));
     dfvn::FieldQuery query;
-    query.dimension = dimension;
+    query.dimension = points.dimension;
     query.seed = common.seed;
     query.field = {dfvn::parse_noise_basis(noise), frequency};
     query.threads = common.threads;
     try {
       dfvn::write_file_atomically(output, dfvn::evaluate_field_csv(query, points));
     } catch (const std::invalid_argument& e) {
-      fail((input.empty() ? std::string("standard input") : dfvn::quote_for_message(input, dfvn::kMaxPathEchoChars)) + ", " +
-           e.what());
+      fail(input_name() + ", " + e.what());
     }
   }
 };
@@ -231,29 +266,9 @@ void make_output_dir(const std::string& dir) {
   dfvn::check_writable((std::filesystem::path(dir) / "probe").string());
 }
 
-// Progress on stderr, only when it is a terminal and --quiet is not given.
-class Progress {
- public:
-  explicit Progress(bool enabled) : enabled_(enabled && ::isatty(STDERR_FILENO)) {}
-  ~Progress() { finish(); }
-  void operator()(std::string_view stage, double fraction) {
-    if (!enabled_) return;
-    std::fprintf(stderr, "\r%-12.*s %5.1f%%", static_cast<int>(stage.size()), stage.data(), 100.0 * fraction);
-    std::fflush(stderr);
-    shown_ = true;
-  }
-  void finish() {
-    if (shown_) std::fprintf(stderr, "\r%30s\r", "");
-    shown_ = false;
-  }
-
- private:
-  bool enabled_;
-  bool shown_ = false;
-};
-
 struct SampleCommand {
   CommonOptions common;
+  ProgressOptions progress;
   dfvn::SampleConfig config;
   std::string methods = "cnj,jitter,pds,sobol";
   std::string protocol = "paper";
@@ -265,26 +280,36 @@ struct SampleCommand {
   std::string stats_path = "-";
   std::string rdf_path;
   std::string points_dir;
+  std::string json_path;
   std::string format = "csv";
   std::string domain = "cube";
   std::string domain_mode = "conformant";
   std::string on = "none";
   CLI::Option* methods_option = nullptr;
+  std::uint64_t count = 0;
   int realizations = 1;
-  bool quiet = false;
+  bool no_stats = false;
+  bool no_timing = false;
+  CLI::Option* stats_option = nullptr;
+  CLI::Option* format_option = nullptr;
 
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
         "sample",
         "Jitter a K^N lattice along the DFVN field (curl noise jittering, Section 5.1) and compare it with\n"
         "random jitter, Poisson disk sampling and Sobol points by nearest-neighbour statistics (CSV).\n"
-        "This is the default subcommand: 'dfvn-sample --dim 7 --grid 6' runs it. Other subcommands:\n"
-        "'dfvn-sample field' (evaluate the field at points) and 'dfvn-sample reproduce table1|table2|cnj-study' (the\n"
-        "paper's tables and figures); each has --help.");
-    add_dimension_option(*cmd, config.dimension, "Dimension N (2..8)");
-    cmd->add_option("--grid", config.grid, "Lattice points per axis K (>= 2); K^N points")
-        ->capture_default_str()
-        ->check(CLI::Range(2, 1 << 30));
+        "This is the main job: 'dfvn-sample --dim 7 --grid 6' (any options) runs it. Other subcommands:\n"
+        "field, stats, reproduce ('dfvn-sample --help'); each has --help.");
+    add_dimension_option(*cmd, config.dimension, "Dimension N (2..8)")->capture_default_str();
+    CLI::Option* grid_option = cmd->add_option("--grid", config.grid, "Lattice points per axis K (>= 2); K^N points")
+                                   ->capture_default_str()
+                                   ->check(CLI::Range(2, 1 << 30));
+    cmd->add_option("-n,--count", count,
+                    "Points per set instead of --grid: the lattice methods (cnj, jitter) use the K whose K^N is\n"
+                    "nearest (the grid column says which), the others make exactly COUNT (Sobol warns unless it is a\n"
+                    "power of 2; PDS reports when it saturates first)")
+        ->check(CLI::Range(std::uint64_t{2}, std::uint64_t{1} << 40))
+        ->excludes(grid_option);
     methods_option = cmd->add_option("--methods", methods, "Comma list of cnj, jitter, pds, sobol, random, halton (scrambled unless --scramble none), lhs; with --on sphere: cnj,random")->capture_default_str();
     cmd->add_option("--protocol", protocol,
                     "paper: Section 5.1 as the paper ran it (lattice linspace(0.05, 0.95, K), jitter +-0.05, PDS\n"
@@ -292,7 +317,7 @@ struct SampleCommand {
                     "[0,1]^N at the density of a cell-centred K^N lattice (jitter +-1/(2K), PDS radius 1/K)")
         ->capture_default_str()
         ->check(CLI::IsMember({"paper", "unit"}));
-    cmd->add_option("--stats", stats_path, "Statistics CSV ('-' = standard output)")->capture_default_str();
+    stats_option = cmd->add_option("-o,--stats", stats_path, "Statistics CSV ('-' = standard output)")->capture_default_str();
     cmd->add_option("--rdf", rdf_path, "Also compute radial distribution functions and write them here (CSV: dim,method,r,g)");
     cmd->add_option("--rdf-max", config.rdf.r_max, "Largest r of the RDF; 0 = 2.5 mean spacings")
         ->capture_default_str()
@@ -302,10 +327,19 @@ struct SampleCommand {
                     "RDF query points: a seeded subset of about this many (0 = all points)")
         ->capture_default_str()
         ->check(kUnsignedInteger);
-    cmd->add_option("--points", points_dir, "Write each point set to DIR/<method>.csv or DIR/<method>.npy");
-    cmd->add_option("--format", format, "Point file format: csv (header x0..x{N-1}) or npy (float64, (points, N))")
-        ->capture_default_str()
-        ->check(CLI::IsMember({"csv", "npy"}));
+    cmd->add_option("--points", points_dir,
+                    "Write each point set to DIR/<method>.<format>; '-' = standard output (one method only)");
+    format_option = cmd->add_option("--format", format,
+                                    "Point file format (with --points): csv (header x0..x{N-1}), npy (float64, (points, N))\n"
+                                    "or dat (coordinates separated by spaces, no header: UTK's and pbrt's pspec text format)")
+                        ->capture_default_str()
+                        ->check(CLI::IsMember({"csv", "npy", "dat"}));
+    cmd->add_flag("--no-stats", no_stats, "Generate the point sets only (needs --points): no statistics and no stats CSV");
+    cmd->add_option("--json", json_path,
+                    "Also write the run as JSON: parameters, every method's statistics and derived values ('-' = standard\n"
+                    "output)");
+    cmd->add_flag("--no-timing", no_timing,
+                  "Leave the seconds columns empty (and out of --json): two runs with the same seed give identical files");
     cmd->add_option("--knn", knn, "KD-tree backend: nanoflann or flann (identical distances)")
         ->capture_default_str()
         ->check(CLI::IsMember({"nanoflann", "flann"}));
@@ -360,7 +394,7 @@ struct SampleCommand {
                     "Run seeds s..s+R-1 and add per method the mean and sd of every statistic (rows seed = mean, sd)")
         ->capture_default_str()
         ->check(CLI::Range(1, 100000));
-    cmd->add_flag("--quiet", quiet, "No progress on stderr (progress is only shown on a terminal)");
+    progress.add_to(*cmd);
     add_common_options(*cmd, common);
     cmd->callback([this] { run(); });
   }
@@ -385,53 +419,103 @@ struct SampleCommand {
         if (seen == m) throw std::invalid_argument("--methods names '" + std::string(dfvn::to_string(m)) + "' twice");
       config.methods.push_back(m);
     }
+    if (count > 0) {
+      config.count = count;
+      config.grid = dfvn::grid_for_count(config.dimension, count);
+    }
+    config.compute_statistics = !no_stats;
     config.compute_rdf = !rdf_path.empty();
     config.validate();
-    if (realizations > 1 && (!points_dir.empty() || !rdf_path.empty()))
-      throw std::invalid_argument("--points and --rdf take one realization; drop them or --realizations");
+    check_output_options();
 
     // Check every destination before the work starts; each file is then written whole or not at all.
-    std::vector<std::pair<std::string, std::string>> outputs = {{"--stats", stats_path}};
+    std::vector<std::pair<std::string, std::string>> outputs;
+    if (!no_stats) outputs.emplace_back("--stats", stats_path);
     if (!rdf_path.empty()) outputs.emplace_back("--rdf", rdf_path);
-    if (!points_dir.empty())
+    if (!json_path.empty()) outputs.emplace_back("--json", json_path);
+    if (!points_dir.empty() && points_dir != "-")
       for (dfvn::Method m : config.methods) outputs.emplace_back("--points (" + point_file_name(m) + ")", point_file(m));
     dfvn::check_distinct_outputs(outputs);
-    dfvn::check_writable(stats_path);
-    if (!rdf_path.empty()) dfvn::check_writable(rdf_path);
-    if (!points_dir.empty()) {
+    for (const auto& [option, path] : outputs)
+      if (!option.starts_with("--points")) dfvn::check_writable(path);
+    if (!points_dir.empty() && points_dir != "-") {
       make_output_dir(points_dir);
       for (dfvn::Method m : config.methods) dfvn::check_writable(point_file(m));
     }
+    for (const std::string& warning : dfvn::sampling_warnings(config)) std::fprintf(stderr, "%s: warning: %s\n", kProgram, warning.c_str());
 
     const dfvn::PointFormat point_format = dfvn::parse_point_format(format);
-    Progress progress(!quiet);
+    dfvn::ProgressReporter* reporter = progress.make(realizations * dfvn::sampling_stage_count(config));
     std::string stats = dfvn::stats_csv_header();
     std::string rdf = dfvn::rdf_csv_header();
     std::vector<std::string> realization_rows;
+    std::vector<dfvn::SamplingRealization> runs;
     // Realization r uses seed s + r; every statistic is then summarised as mean and sd per method.
     for (int realization = 0; realization < realizations; ++realization) {
       config.seed = common.seed + static_cast<std::uint64_t>(realization);
-      const auto results = dfvn::run_sampling(
-          config, false, [&](std::string_view stage, double f) { progress(stage, f); },
-          [&](const dfvn::MethodResult& r) {
-            if (!points_dir.empty()) dfvn::write_point_file(point_file(r.plan.method), r.points, point_format);
-          });
+      auto results = dfvn::run_sampling(config, false, reporter->callback(), [&](const dfvn::MethodResult& r) {
+        if (!points_dir.empty()) {
+          reporter->finish();  // the live line stays off standard output's terminal
+          dfvn::write_point_file(point_file(r.plan.method), r.points, point_format);
+        }
+      });
       for (const auto& r : results) {
-        realization_rows.push_back(dfvn::stats_csv_row(config, r));
+        realization_rows.push_back(dfvn::stats_csv_row(config, r, !no_timing));
         stats += realization_rows.back();
         realization_rows.back().pop_back();
         rdf += dfvn::rdf_csv_rows(config, r);
+        if (config.count > 0) {
+          reporter->finish();  // a warning starts on a line of its own
+          report_saturation(r);
+        }
       }
+      runs.push_back({config.seed, std::move(results)});
     }
-    progress.finish();
+    reporter->complete();
     if (realizations > 1)
       stats += dfvn::realization_summary_rows(stats.substr(0, stats.find('\n')), realization_rows, {"dim", "grid", "method"}, "seed");
+    config.seed = common.seed;
+    if (!json_path.empty()) dfvn::write_file_atomically(json_path, dfvn::sampling_json(config, runs, !no_timing));
     if (!rdf_path.empty()) dfvn::write_file_atomically(rdf_path, rdf);
-    dfvn::write_file_atomically(stats_path, stats);
+    if (!no_stats) dfvn::write_file_atomically(stats_path, stats);
+  }
+
+  // Options that only make sense together, and outputs that would share standard output.
+  void check_output_options() const {
+    if (format_option->count() > 0 && points_dir.empty())
+      throw std::invalid_argument("--format " + format + " applies to --points, which is not given");
+    if (no_stats && points_dir.empty()) throw std::invalid_argument("--no-stats writes only point sets: give --points DIR (or -)");
+    if (no_stats && (stats_option->count() > 0 || !rdf_path.empty() || realizations > 1))
+      throw std::invalid_argument("--no-stats computes no statistics: drop --stats, --rdf and --realizations");
+    if (realizations > 1 && (!points_dir.empty() || !rdf_path.empty()))
+      throw std::invalid_argument("--points and --rdf take one realization; drop them or --realizations");
+    if (points_dir == "-" && config.methods.size() != 1)
+      throw std::invalid_argument(fmt::format("--points - writes one point set to standard output; --methods names {}",
+                                              config.methods.size()));
+    // Two CSVs on one standard output would interleave.
+    std::vector<std::string> on_stdout;
+    if (!no_stats && stats_path == "-") on_stdout.push_back(stats_option->count() > 0 ? "--stats -" : "the statistics (default --stats -)");
+    if (rdf_path == "-") on_stdout.push_back("--rdf -");
+    if (points_dir == "-") on_stdout.push_back("--points -");
+    if (json_path == "-") on_stdout.push_back("--json -");
+    if (on_stdout.size() > 1)
+      throw std::invalid_argument(fmt::format("{} and {} would both write to standard output; send one to a file{}",
+                                              on_stdout[0], on_stdout[1],
+                                              on_stdout[0].starts_with("the statistics") ? " (-o FILE) or use --no-stats" : ""));
+  }
+
+  // With -n, PDS that saturated before the count: say so (the saturated column has it in every run).
+  static void report_saturation(const dfvn::MethodResult& r) {
+    if (r.facts.saturated && *r.facts.saturated)
+      std::fprintf(stderr, "%s: warning: pds saturated at %llu of %llu points (radius %g): the domain holds no more\n",
+                   kProgram, static_cast<unsigned long long>(r.point_count),
+                   static_cast<unsigned long long>(r.plan.requested), *r.facts.radius);
   }
 
   std::string point_file_name(dfvn::Method m) const { return std::string(dfvn::to_string(m)) + "." + format; }
-  std::string point_file(dfvn::Method m) const { return (std::filesystem::path(points_dir) / point_file_name(m)).string(); }
+  std::string point_file(dfvn::Method m) const {
+    return points_dir == "-" ? points_dir : (std::filesystem::path(points_dir) / point_file_name(m)).string();
+  }
 };
 
 
@@ -451,7 +535,7 @@ struct ReproduceCommand {
   double frequency = 0.0, field_magnitude = 0.0;  // 0: the setting's
   CLI::Option* second_width_option = nullptr;
   std::string table1_noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
-  bool quiet = false;
+  ProgressOptions progress;
 
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand("reproduce", "Regenerate the paper's tables and figures, ours beside the paper's.");
@@ -464,7 +548,7 @@ struct ReproduceCommand {
     t1->add_option("--out", out1, "Output directory")->capture_default_str();
     t1->add_option("--dims", dims, "Dimensions: a range or list within 3..7, e.g. 3-7 or 3,5")->capture_default_str();
     add_noise_option(*t1, table1_noise);  // the CNJ column; the simplex column is always shown beside it
-    t1->add_flag("--quiet", quiet, "No progress on stderr");
+    progress.add_to(*t1);
     add_common_options(*t1, common1);
     t1->callback([this] { run_table1(); });
 
@@ -498,7 +582,7 @@ struct ReproduceCommand {
                    "RMS speed of the field in image widths per unit time, in [1e-6, 1e6]; default: the setting's\n"
                    "(shader: 5.049, ours: 1)")
         ->check(CLI::Range(1e-6, 1e6));
-    t2->add_flag("--quiet", quiet, "No progress on stderr");
+    progress.add_to(*t2);
     add_common_options(*t2, common2);
     t2->callback([this] { run_table2(); });
 
@@ -527,7 +611,7 @@ struct ReproduceCommand {
     s->add_option("--step-scales", study.step_scales, "Comma list of step scales C (t = C dbar(N) spacing)")
         ->delimiter(',')
         ->capture_default_str();
-    s->add_flag("--quiet", quiet, "No progress on stderr");
+    progress.add_to(*s);
     add_common_options(*s, common3);
     s->callback([this] { run_cnj_study(); });
     add_integration(cmd);
@@ -542,9 +626,9 @@ struct ReproduceCommand {
     study.threads = common3.threads;
     study.validate();
     make_output_dir(study.out_dir);
-    Progress progress(!quiet);
-    const auto result = dfvn::run_cnj_study(study, [&](std::string_view stage, double f) { progress(stage, f); });
-    progress.finish();
+    dfvn::ProgressReporter* reporter = progress.make();
+    const auto result = dfvn::run_cnj_study(study, reporter->callback());
+    reporter->complete();
     std::fputs(dfvn::write_cnj_study(result, log).c_str(), stdout);
   }
 
@@ -563,7 +647,7 @@ struct ReproduceCommand {
         ->capture_default_str()
         ->check(CLI::Range(64, 1 << 24));
     t3->add_option("--methods", integration_methods, "Comma list of methods")->capture_default_str();
-    t3->add_flag("--quiet", quiet, "No progress on stderr");
+    progress.add_to(*t3);
     add_common_options(*t3, common4);
     t3->callback([this] { run_integration(); });
   }
@@ -577,9 +661,9 @@ struct ReproduceCommand {
       integration.methods.push_back(dfvn::parse_method(CLI::detail::trim_copy(name)));
     integration.validate();
     make_output_dir(integration.out_dir);
-    Progress progress(!quiet);
-    const auto result = dfvn::run_integration(integration, [&](std::string_view stage, double f) { progress(stage, f); });
-    progress.finish();
+    dfvn::ProgressReporter* reporter = progress.make();
+    const auto result = dfvn::run_integration(integration, reporter->callback());
+    reporter->complete();
     std::fputs(dfvn::write_integration(result, log).c_str(), stdout);
   }
 
@@ -593,9 +677,9 @@ struct ReproduceCommand {
     config.threads = common1.threads;
     config.out_dir = out1;
     make_output_dir(out1);
-    Progress progress(!quiet);
-    const auto result = dfvn::run_table1(config, [&](std::string_view stage, double f) { progress(stage, f); });
-    progress.finish();
+    dfvn::ProgressReporter* reporter = progress.make();
+    const auto result = dfvn::run_table1(config, reporter->callback());
+    reporter->complete();
     std::fputs(dfvn::write_table1(config, result, log).c_str(), stdout);
   }
 
@@ -616,9 +700,9 @@ struct ReproduceCommand {
     config.threads = common2.threads;
     table2.validate();
     make_output_dir(out2);
-    Progress progress(!quiet);
-    const auto result = dfvn::run_table2(table2, [&](std::string_view stage, double f) { progress(stage, f); });
-    progress.finish();
+    dfvn::ProgressReporter* reporter = progress.make();
+    const auto result = dfvn::run_table2(table2, reporter->callback());
+    reporter->complete();
     std::fputs(dfvn::write_table2(out2, result, log).c_str(), stdout);
   }
 };
@@ -632,8 +716,10 @@ struct StatsCommand {
   double domain_side = 1.0;
   std::string spectrum_prefix;
   int spectrum_frequency = 32;
+  std::string json_path;
   bool discrepancy = false;
-  bool quiet = false;
+  bool no_timing = false;
+  ProgressOptions progress;
 
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
@@ -652,21 +738,23 @@ struct StatsCommand {
     cmd->add_option("--knn", knn, "KD-tree backend: nanoflann or flann")
         ->capture_default_str()
         ->check(CLI::IsMember({"nanoflann", "flann"}));
-    cmd->add_option("--output", output, "Statistics CSV ('-' = standard output)")->capture_default_str();
+    cmd->add_option("-o,--output", output, "Statistics CSV ('-' = standard output)")->capture_default_str();
+    cmd->add_option("--json", json_path, "Also write the statistics as JSON ('-' = standard output)");
+    cmd->add_flag("--no-timing", no_timing, "Leave seconds_stats empty (and out of --json): identical files for identical input");
     cmd->add_option("--spectrum", spectrum_prefix,
                     "2D/3D sets: also write the power spectrum averaged over the file's sets: PREFIX.csv (k0..,power),\n"
                     "PREFIX_radial.csv (frequency,power,anisotropy_db,frequencies) and, with gnuplot, PREFIX.png");
     cmd->add_option("--spectrum-frequency", spectrum_frequency, "Largest integer frequency K of the spectrum ([-K,K]^N)")
         ->capture_default_str()
         ->check(CLI::Range(1, 512));
-    cmd->add_flag("--quiet", quiet, "No progress on stderr (progress is only shown on a terminal)");
+    progress.add_to(*cmd);
     cmd->add_option("--threads", common.threads, "Worker threads; 0 = all cores (output never depends on it)")
         ->capture_default_str()
         ->check(CLI::NonNegativeNumber);
     cmd->callback([this] { run(); });
   }
 
-  void run() const {
+  void run() {
     const dfvn::InputFormat input_format =
         format.empty() ? dfvn::input_format_from_path(input) : dfvn::parse_input_format(format);
     std::vector<dfvn::PointSet> sets;
@@ -678,7 +766,11 @@ struct StatsCommand {
     } catch (const std::exception& e) {
       fail(input + (sets.empty() ? ", " : fmt::format(", set {}: ", sets.size() - 1)) + e.what());
     }
+    if (output == "-" && json_path == "-")
+      fail("the statistics (--output -) and --json - would both write to standard output; send one to a file");
+    if (!json_path.empty()) dfvn::check_distinct_outputs({{"--output", output}, {"--json", json_path}});
     dfvn::check_writable(output);
+    if (!json_path.empty()) dfvn::check_writable(json_path);
     if (!spectrum_prefix.empty()) {
       if (sets.front().dimension != 2 && sets.front().dimension != 3)
         fail(fmt::format("--spectrum needs 2D or 3D points; '{}' holds {}D points", input, sets.front().dimension));
@@ -688,23 +780,32 @@ struct StatsCommand {
     options.discrepancy = discrepancy;
     options.knn = dfvn::parse_knn_backend(knn);
     options.threads = common.threads;
-    Progress progress(!quiet);
+    dfvn::ProgressReporter* reporter =
+        progress.make(static_cast<int>(sets.size()) * dfvn::point_statistics_stage_count(options) + (spectrum_prefix.empty() ? 0 : 1));
     std::string csv = dfvn::point_statistics_csv_header();
     std::vector<std::string> rows;
+    dfvn::PointStatisticsRun run{input, std::string(dfvn::to_string(input_format)), domain_side, options, {}, {}, !no_timing};
     for (std::size_t s = 0; s < sets.size(); ++s) {
-      const auto statistics = dfvn::measure_point_set(sets[s], options, [&](std::string_view stage, double f) { progress(stage, f); });
-      rows.push_back(dfvn::point_statistics_csv_row(input, std::to_string(s), sets[s], statistics));
+      // Each set's stages get its number, so that the [k/n] counter moves on between sets.
+      const std::string set_label = sets.size() > 1 ? fmt::format("set {} ", s) : std::string();
+      run.sets.push_back(dfvn::measure_point_set(sets[s], options, [&](std::string_view stage, double f) {
+        reporter->report(set_label + std::string(stage), f);
+      }));
+      run.dimensions.push_back(sets[s].dimension);
+      rows.push_back(dfvn::point_statistics_csv_row(input, std::to_string(s), sets[s], run.sets.back(), !no_timing));
       csv += rows.back();
       rows.back().pop_back();
     }
-    progress.finish();
     if (sets.size() > 1) csv += dfvn::realization_summary_rows(csv.substr(0, csv.find('\n')), rows, {"input", "dim"}, "set");
     if (!spectrum_prefix.empty()) {
-      progress("spectrum", 0.0);
-      dfvn::write_spectrum_files(spectrum_prefix, dfvn::power_spectrum(sets, spectrum_frequency, common.threads),
+      reporter->report("spectrum", 0.0);
+      const auto spectrum = dfvn::power_spectrum(sets, spectrum_frequency, common.threads);
+      reporter->finish();
+      dfvn::write_spectrum_files(spectrum_prefix, spectrum,
                                  [](const std::string& line) { std::fprintf(stderr, "%s: %s\n", kProgram, line.c_str()); });
-      progress.finish();
     }
+    reporter->complete();
+    if (!json_path.empty()) dfvn::write_file_atomically(json_path, dfvn::point_statistics_json(run));
     dfvn::write_file_atomically(output, csv);
   }
 };
@@ -752,28 +853,52 @@ std::string parse_error_message(CLI::App& app, const CLI::ParseError& error) {
   return error.what();
 }
 
-// 'sample' is the default: insert it when the first argument names no subcommand.
+// 'sample' is the default: insert it when the first argument names no subcommand and is not one of
+// the program's own flags (--help, --help-all, --version).
 std::vector<std::string> with_default_subcommand(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   const bool names_subcommand = !args.empty() && std::find(kSubcommands.begin(), kSubcommands.end(), args[0]) != kSubcommands.end();
-  const bool top_level_flag = !args.empty() && (args[0] == "--version" || args[0] == "--help-all");
+  const bool top_level_flag =
+      !args.empty() && (args[0] == "--version" || args[0] == "--help-all" || args[0] == "--help" || args[0] == "-h");
   if (!names_subcommand && !top_level_flag) args.insert(args.begin(), "sample");
   std::reverse(args.begin(), args.end());  // CLI11 parses a reversed vector
   return args;
 }
 
+// Without arguments: what the tool does and how to start, instead of starting a long job.
+constexpr const char* kUsage =
+    "dfvn-sample: divergence-free vector noise (DFVN) in 2..8 dimensions, curl noise jittering of lattices\n"
+    "and the point-set statistics of 'Improving Curl Noise' (SIGGRAPH Asia 2025).\n"
+    "\n"
+    "The main job: CNJ, jittered lattice, Poisson disk and Sobol point sets and one CSV row of\n"
+    "nearest-neighbour statistics per method (any options run it, as does 'dfvn-sample sample ...'):\n"
+    "  dfvn-sample --dim 7 --grid 6              the paper's 7D sets (about 40 s on 2 cores)\n"
+    "  dfvn-sample -d 3 -n 4096 -o stats.csv     3D, 4096 points per set\n"
+    "\n"
+    "Subcommands:\n"
+    "  sample      the main job (the default)\n"
+    "  field       evaluate the field at points read as text\n"
+    "  stats       statistics of any point set (CSV, NPY or dat)\n"
+    "  reproduce   the paper's tables and figures: table1, table2, cnj-study, integration\n"
+    "\n"
+    "'dfvn-sample SUBCOMMAND --help' lists a subcommand's options and defaults; --help-all lists every one;\n"
+    "--version prints the version.\n";
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc == 1) {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
   CLI::App app{"dfvn-sample: divergence-free vector noise (DFVN) in 2..8 dimensions: the field, curl-noise\n"
                "jittering of lattices, and the point-set statistics of 'Improving Curl Noise' (SIGGRAPH Asia 2025).",
                kProgram};
   app.set_version_flag("--version", std::string(kProgram) + " " + DFVN_VERSION);
   app.set_help_all_flag("--help-all", "Print the help of every subcommand and exit");
   app.require_subcommand(1);
-  app.footer("Subcommands: sample (default; 'dfvn-sample sample --help'), field, stats,\n"
-             "reproduce table1|table2|cnj-study|integration\n"
-             "('dfvn-sample field --help', 'dfvn-sample reproduce table1 --help').");
+  app.footer("Without a subcommand, 'sample' runs (the main job): 'dfvn-sample --dim 7 --grid 6'.\n"
+             "Each subcommand has --help: 'dfvn-sample sample --help', 'dfvn-sample reproduce table1 --help'.");
   SampleCommand sample;
   sample.add_to(app);
   FieldCommand field;

@@ -1,6 +1,9 @@
 #include "io/csv.hpp"
 
+#include <algorithm>
 #include <charconv>
+#include <iterator>
+#include <sstream>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -130,7 +133,111 @@ PointTable read_points_csv(std::istream& in, int dimension) {
   return table;
 }
 
+namespace {
+
+std::string replace_first(std::string text, const std::string& from, const std::string& to) {
+  if (const auto at = text.find(from); at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+// Whitespace-separated fields of one line.
+std::vector<std::string> split_whitespace(std::string_view line) {
+  std::vector<std::string> fields;
+  std::size_t at = 0;
+  while (true) {
+    at = line.find_first_not_of(" \t\r", at);
+    if (at == std::string_view::npos) break;
+    const std::size_t end = std::min(line.find_first_of(" \t\r", at), line.size());
+    fields.emplace_back(line.substr(at, end - at));
+    at = end;
+  }
+  return fields;
+}
+
+PointTable read_points_whitespace(std::istream& in, int dimension, bool inferred) {
+  PointTable table;
+  table.dimension = dimension;
+  std::string line;
+  std::size_t line_number = 0;
+  bool seen_data_line = false;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (line_number == 1 && line.starts_with("\xEF\xBB\xBF")) line.erase(0, 3);
+    const std::string_view text = trim(line);
+    if (text.empty() || text.front() == '#') continue;
+    const auto fields = split_whitespace(text);
+    const bool first = !seen_data_line;
+    seen_data_line = true;
+    if (static_cast<int>(fields.size()) != dimension)
+      throw InputError(fmt::format("line {}: expected {} whitespace-separated columns ({}), found {}", line_number, dimension,
+                                   inferred ? std::string("as in the first line") : fmt::format("--dim {}", dimension),
+                                   fields.size()));
+    double values[16];
+    int non_numeric = 0;
+    for (std::size_t j = 0; j < fields.size(); ++j) non_numeric += parse_double(fields[j], values[j]) == ParseResult::not_a_number;
+    if (first && non_numeric == dimension) continue;  // a header line
+    for (std::size_t j = 0; j < fields.size(); ++j) {
+      const ParseResult r = parse_double(fields[j], values[j]);
+      const std::string bad = quote_for_message(fields[j]);
+      if (r == ParseResult::not_finite)
+        throw InputError(fmt::format("line {}, column {}: {} is not a finite number (NaN and Inf are not allowed)",
+                                     line_number, j + 1, bad));
+      if (r == ParseResult::out_of_range)
+        throw InputError(fmt::format("line {}, column {}: {} is out of the range of a double", line_number, j + 1, bad));
+      if (r != ParseResult::ok)
+        throw InputError(fmt::format("line {}, column {}: {} is not a number", line_number, j + 1, bad));
+    }
+    table.coordinates.insert(table.coordinates.end(), values, values + dimension);
+  }
+  if (in.bad()) throw InputError("read error");
+  return table;
+}
+
+}  // namespace
+
+PointTable read_points_text(std::istream& in, int dimension) {
+  if (dimension < 0 || dimension > 16) throw std::invalid_argument("read_points_text: dimension must be in 0..16");
+  const std::string bytes(std::istreambuf_iterator<char>(in), {});
+  if (in.bad()) throw InputError("read error");
+  // The first line that is neither blank nor a comment decides the layout (and, if asked, the dimension).
+  std::size_t begin = 0, line_number = 0;
+  std::string_view first_line;
+  while (begin < bytes.size()) {
+    const std::size_t end = std::min(bytes.find('\n', begin), bytes.size());
+    ++line_number;
+    std::string_view line = std::string_view(bytes).substr(begin, end - begin);
+    if (line_number == 1 && line.starts_with("\xEF\xBB\xBF")) line.remove_prefix(3);
+    begin = end + 1;
+    const std::string_view text = trim(line);
+    if (text.empty() || text.front() == '#') continue;
+    first_line = text;
+    break;
+  }
+  const bool comma = first_line.find(',') != std::string_view::npos;
+  const bool inferred = dimension == 0;
+  if (inferred) {
+    if (first_line.empty()) throw InputError("no points in the input");
+    const std::size_t columns = comma ? split_fields(first_line, line_number).size() : split_whitespace(first_line).size();
+    if (columns > 16) throw InputError(fmt::format("line {}: {} columns; at most 16 are read", line_number, columns));
+    dimension = static_cast<int>(columns);
+  }
+  std::istringstream text(bytes);
+  if (!comma) return read_points_whitespace(text, dimension, inferred);
+  try {
+    return read_points_csv(text, dimension);
+  } catch (const InputError& e) {
+    if (!inferred) throw;
+    throw InputError(replace_first(e.what(), fmt::format(" (--dim {})", dimension), " (as in the first line)"));
+  }
+}
+
 void append_double(std::string& out, double value) { fmt::format_to(std::back_inserter(out), "{:.17g}", value); }
+
+std::string format_real(double value, int significant) {
+  std::string text = fmt::format("{:.{}g}", value, significant);
+  if (std::isfinite(value) && text.find_first_of(".e") == std::string::npos) text += ".0";
+  return text;
+}
 
 std::string numbered_header(std::string_view prefix, int count, int first_index) {
   std::string out;

@@ -32,9 +32,20 @@ struct PointTable {
 // escaped (core/message_text.hpp).
 PointTable read_points_csv(std::istream& in, int dimension);
 
+// Points as text in either layout: comma-separated (as read_points_csv) or separated by spaces and
+// tabs (numpy.savetxt's default; lines starting with '#' are comments, and the first other line may be
+// a header). The first line that is neither blank nor a comment decides which: a comma makes it CSV.
+// `dimension` 0: the column count of that line (1..16), named in errors as "as in the first line".
+PointTable read_points_text(std::istream& in, int dimension);
+
 // A double in the shortest form that still has 17 significant digits of precision ("%.17g"), so the
 // text reads back to the identical value.
 void append_double(std::string& out, double value);
+
+// A real number for a CSV column of reals: `significant` digits ("%.9g"), with ".0" appended when that
+// leaves neither a decimal point nor an exponent, so a column never changes type between runs ("1.0"
+// beside "0.6", not "1").
+std::string format_real(double value, int significant = 9);
 
 // "x0,x1,...,x{n-1}" style header: prefix0,prefix1,...
 std::string numbered_header(std::string_view prefix, int count, int first_index = 0);

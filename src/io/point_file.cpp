@@ -33,13 +33,15 @@ void write_npy(std::ostream& out, const PointSet& points) {
             static_cast<std::streamsize>(points.coordinates.size() * sizeof(double)));
 }
 
-void write_points_csv(std::ostream& out, const PointSet& points) {
-  // Formatted and written in blocks of rows: memory stays small for any number of points.
+namespace {
+
+// One point a line, coordinates separated by `separator`, after `header`. Formatted and written in
+// blocks of rows: memory stays small for any number of points.
+void write_points_text(std::ostream& out, const PointSet& points, std::string text, char separator) {
   constexpr std::size_t kBlockRows = 4096;
-  std::string text = numbered_header("x", points.dimension) + '\n';
   for (std::size_t i = 0; i < points.size(); ++i) {
     for (int j = 0; j < points.dimension; ++j) {
-      if (j) text += ',';
+      if (j) text += separator;
       append_double(text, points.point(i)[j]);
     }
     text += '\n';
@@ -51,18 +53,28 @@ void write_points_csv(std::ostream& out, const PointSet& points) {
   out.write(text.data(), static_cast<std::streamsize>(text.size()));
 }
 
+}  // namespace
+
+void write_points_csv(std::ostream& out, const PointSet& points) {
+  write_points_text(out, points, numbered_header("x", points.dimension) + '\n', ',');
+}
+
+void write_points_dat(std::ostream& out, const PointSet& points) { write_points_text(out, points, std::string(), ' '); }
+
 PointFormat parse_point_format(std::string_view name) {
   if (name == "csv") return PointFormat::csv;
   if (name == "npy") return PointFormat::npy;
-  throw std::invalid_argument("unknown point format " + quote_for_message(name) + " (allowed: csv, npy)");
+  if (name == "dat") return PointFormat::dat;
+  throw std::invalid_argument("unknown point format " + quote_for_message(name) + " (allowed: csv, npy, dat)");
 }
 
 void write_point_file(const std::string& path, const PointSet& points, PointFormat format) {
   AtomicOutput out(path);
-  if (format == PointFormat::csv)
-    write_points_csv(out.stream(), points);
-  else
-    write_npy(out.stream(), points);
+  switch (format) {
+    case PointFormat::csv: write_points_csv(out.stream(), points); break;
+    case PointFormat::npy: write_npy(out.stream(), points); break;
+    case PointFormat::dat: write_points_dat(out.stream(), points); break;
+  }
   out.commit();
 }
 

@@ -13,6 +13,7 @@
 #include "core/message_text.hpp"
 #include "core/parallel.hpp"
 #include "core/stopwatch.hpp"
+#include "io/csv.hpp"
 #include "noise/noise_domain.hpp"
 #include "sampling/halton.hpp"
 #include "sampling/jitter.hpp"
@@ -31,6 +32,37 @@ double physical_memory_bytes() {
 }
 
 }  // namespace
+
+std::vector<std::string> sampling_warnings(const SampleConfig& config) {
+  std::vector<std::string> warnings;
+  const bool has = [&] {
+    for (Method m : config.methods)
+      if (m == Method::cnj || m == Method::jitter) return true;
+    return false;
+  }();
+  if (config.count > 0 && has) {
+    const std::uint64_t lattice_points = config.lattice().point_count();
+    if (lattice_points != config.count)
+      warnings.push_back(fmt::format("-n {}: the lattice methods use K = {}, {}^{} = {} points, the nearest K^N", config.count,
+                                     config.grid, config.grid, config.dimension, lattice_points));
+  }
+  for (Method m : config.methods) {
+    if (m != Method::sobol) continue;
+    const std::uint64_t n = plan_method(config, m).requested;
+    if (n > 0 && (n & (n - 1)) != 0) {
+      const int below = static_cast<int>(std::floor(std::log2(static_cast<double>(n))));
+      warnings.push_back(fmt::format("sobol: {} points is not a power of 2; Sobol points are balanced only at 2^m points "
+                                     "(nearest: {} or {})",
+                                     n, std::uint64_t{1} << below, std::uint64_t{1} << (below + 1)));
+    }
+  }
+  return warnings;
+}
+
+int sampling_stage_count(const SampleConfig& config) {
+  const int per_method = 1 + (config.compute_statistics ? 1 : 0) + (config.compute_statistics && config.compute_rdf ? 1 : 0);
+  return per_method * static_cast<int>(config.methods.size());
+}
 
 MethodPlan plan_method(const SampleConfig& config, Method method) {
   const LatticeSpec lattice = config.lattice();
@@ -71,7 +103,7 @@ MethodPlan plan_method(const SampleConfig& config, Method method) {
       break;
     case Method::sobol:
       plan.domain = paper ? paper_box : Box{0.0, 1.0};
-      if (paper) {  // SciPy's count: 2^round(log2(K^N))
+      if (paper && config.count == 0) {  // SciPy's count: 2^round(log2(K^N))
         const int exponent = static_cast<int>(std::lround(std::log2(static_cast<double>(lattice_points))));
         plan.requested = std::uint64_t{1} << std::min(exponent, 32);
       }
@@ -81,6 +113,7 @@ MethodPlan plan_method(const SampleConfig& config, Method method) {
       plan.domain = paper ? paper_box : Box{0.0, 1.0};
       break;
   }
+  // -n: every method that is not a lattice makes exactly the count asked for.
   const bool lattice_method = method == Method::cnj || method == Method::jitter;
   if (config.count > 0 && !lattice_method) plan.requested = config.count;
   return plan;
@@ -106,6 +139,7 @@ void SampleConfig::validate() const {
   if (dimension < kMinDimension || dimension > kMaxDimension)
     throw std::invalid_argument(fmt::format("--dim must be in {}..{}, got {}", kMinDimension, kMaxDimension, dimension));
   if (grid < 2) throw std::invalid_argument(fmt::format("--grid must be at least 2, got {}", grid));
+  if (count > (std::uint64_t{1} << 40)) throw std::invalid_argument(fmt::format("-n {} is more points than any memory holds", count));
   if (methods.empty()) throw std::invalid_argument("--methods must name at least one method");
   check_thread_count(threads);
   if (protocol == Protocol::paper && grid * kPaperDelta > 1e6) throw std::invalid_argument("--grid is too large");
@@ -172,44 +206,53 @@ void SampleConfig::validate() const {
         grid, dimension, lattice_points, byte_size(need), byte_size(limit)));
 }
 
-static PointSet generate_points(const SampleConfig& config, const MethodPlan& plan, std::string& notes,
-                         std::optional<LatticeDisplacementSummary>& displacement, const StageProgress& progress) {
+static PointSet generate_points(const SampleConfig& config, const MethodPlan& plan, MethodResult& result,
+                         const StageProgress& progress) {
   const LatticeSpec lattice = config.lattice();
+  const std::string stage(to_string(plan.method));
+  const FractionProgress report = [&](double f) {
+    if (progress) progress(stage, f);
+  };
+  GenerationFacts& facts = result.facts;
   switch (plan.method) {
     case Method::cnj: {
-      const auto report = [&](double f) {
-        if (progress) progress("cnj", f);
-      };
       if (config.on == Surface::sphere) {
         SphereCnjResult r = sphere_curl_noise_jitter(config.dimension, config.grid, config.cnj, config.seed,
                                                      config.threads, report);
-        notes = fmt::format("on=sphere geodesic noise={} t={:.4g} F={:.4g} rms_move={:.4g} retraced={} kept_at_site={} "
-                            "skipped_updates={}",
-                            to_string(config.cnj.noise), r.trace_time, r.field_frequency, r.rms_displacement,
-                            r.retraced, r.kept_at_site, r.trace_stats.skipped_updates);
+        facts.frequency = config.cnj.frequency;
+        facts.field_frequency = r.field_frequency;
+        facts.trace_time = r.trace_time;
+        facts.skipped_updates = r.trace_stats.skipped_updates;
+        facts.retraced = r.retraced;
+        facts.kept_at_site = r.kept_at_site;
+        result.notes = fmt::format("{} noise, on the sphere, geodesic distances", to_string(config.cnj.noise));
         return std::move(r.points);
       }
       CnjResult r = curl_noise_jitter(lattice, config.cnj, config.seed, config.threads, report);
-      notes = fmt::format("noise={} t={:.4g} F={:.4g} rms_move={:.4g} domain={} mode={} dropped={} retraced={} "
-                          "kept_at_site={} skipped_updates={}",
-                          to_string(config.cnj.noise), r.trace_time, r.field_frequency, r.rms_displacement,
-                          to_string(config.cnj.domain), to_string(config.cnj.domain_mode), r.dropped, r.retraced,
-                          r.kept_at_site, r.trace_stats.skipped_updates);
+      facts.frequency = config.cnj.frequency;
+      facts.field_frequency = r.field_frequency;
+      facts.trace_time = r.trace_time;
+      facts.dropped = r.dropped;
+      facts.skipped_updates = r.trace_stats.skipped_updates;
+      facts.retraced = r.retraced;
+      facts.kept_at_site = r.kept_at_site;
+      result.notes = fmt::format("{} noise, {} domain, {}", to_string(config.cnj.noise), to_string(config.cnj.domain),
+                                 to_string(config.cnj.domain_mode));
       if (config.cnj.domain == CnjDomain::cube)  // the ball's clipped lattice has no K^N neighbour structure
-        displacement =
+        result.displacement =
             summarize_lattice_displacements(config.dimension, config.grid, lattice.spacing(), r.displacements);
       return std::move(r.points);
     }
     case Method::jitter: {
-      notes = fmt::format("half_width={:.4g}", jitter_half_width(lattice));
+      facts.half_width = jitter_half_width(lattice);
       PointSet points = jittered_lattice(lattice, config.seed, config.threads);
-      displacement = summarize_lattice_displacements(config.dimension, config.grid, lattice.spacing(),
-                                                     lattice_displacements(lattice, points));
+      result.displacement = summarize_lattice_displacements(config.dimension, config.grid, lattice.spacing(),
+                                                            lattice_displacements(lattice, points));
       return points;
     }
     case Method::random:
       if (config.on == Surface::sphere) {
-        notes = "on=sphere geodesic";
+        result.notes = "on the sphere, geodesic distances";
         return uniform_points_on_sphere(config.dimension, plan.requested, config.seed, config.threads);
       }
       return uniform_random_points(config.dimension, plan.requested, plan.domain, config.seed, config.threads);
@@ -219,16 +262,17 @@ static PointSet generate_points(const SampleConfig& config, const MethodPlan& pl
       o.candidates = config.pds_candidates;
       o.max_points = plan.requested;
       o.domain = plan.domain;
-      PoissonDiskResult r = poisson_disk(config.dimension, o, config.seed);
-      notes = fmt::format("radius={:.4g} placed={} {}", plan.pds_radius, r.points.size(),
-                          r.reached_max_points ? "stopped at requested count" : "saturated (active list empty)");
+      PoissonDiskResult r = poisson_disk(config.dimension, o, config.seed, report);
+      facts.radius = plan.pds_radius;
+      facts.saturated = !r.reached_max_points;
+      result.notes = r.reached_max_points ? "stopped at the requested count" : "saturated (active list empty)";
       return std::move(r.points);
     }
     case Method::sobol:
-      notes = fmt::format("scramble={}", to_string(config.scramble));
+      result.notes = fmt::format("{} scrambling", to_string(config.scramble));
       return sobol_points(config.dimension, plan.requested, plan.domain, config.scramble, config.seed, config.threads);
     case Method::halton:
-      notes = fmt::format("scramble={}", config.scramble == Scramble::owen ? "digit-permutation" : "none");
+      result.notes = config.scramble == Scramble::owen ? "digit-permutation scrambling" : "no scrambling";
       return halton_points(config.dimension, plan.requested, plan.domain, config.scramble == Scramble::owen, config.seed,
                            config.threads);
     case Method::lhs:
@@ -238,7 +282,8 @@ static PointSet generate_points(const SampleConfig& config, const MethodPlan& pl
 }
 
 void generate_points(const SampleConfig& config, MethodResult& result, const StageProgress& progress) {
-  result.points = generate_points(config, result.plan, result.notes, result.displacement, progress);
+  result.points = generate_points(config, result.plan, result, progress);
+  result.point_count = result.points.size();
 }
 
 namespace {
@@ -256,25 +301,42 @@ MethodResult run_method(const SampleConfig& config, const MethodPlan& plan, bool
   const Method method = plan.method;
   MethodResult result;
   result.plan = plan;
-  if (progress) progress(to_string(method), 0.0);
+  const std::string name(to_string(method));
+  if (progress) progress(name, 0.0);
   Stopwatch stopwatch;
   generate_points(config, result, progress);
   result.seconds_generate = stopwatch.seconds();
+  if (!config.compute_statistics) {
+    if (on_result) on_result(result);
+    if (!keep_points) result.points = PointSet{result.points.dimension, {}, result.points.domain};
+    return result;
+  }
   if (result.points.size() < 2)  // CNJ drops the points that leave the unit cube
     throw std::invalid_argument(fmt::format("the {} point set has {} point(s) ({}); the statistics need at least 2",
-                                            to_string(method), result.points.size(), result.notes));
-  if (progress) progress("statistics", 0.0);
+                                            name, result.points.size(),
+                                            result.facts.dropped ? fmt::format("{} dropped", *result.facts.dropped)
+                                                                 : result.notes));
+  const std::string statistics_stage = name + " statistics";
+  const FractionProgress report_statistics = [&](double f) {
+    if (progress) progress(statistics_stage, f);
+  };
+  report_statistics(0.0);
   stopwatch.restart();
   if (config.on == Surface::sphere)  // great-circle distances
     result.nearest = summarize_geodesic_nearest_neighbours(
         geodesic_nearest_neighbour_distances(result.points, config.knn, config.threads), config.dimension);
   else
     result.nearest = summarize_nearest_neighbours(
-        nearest_neighbour_distances(result.points, config.knn, config.threads), result.points);
+        nearest_neighbour_distances(result.points, config.knn, config.threads, report_statistics), result.points);
+  result.measured = true;
   result.seconds_stats = stopwatch.seconds();
   if (config.compute_rdf) {
-    if (progress) progress("rdf", 0.0);
-    result.rdf = radial_distribution(result.points, config.rdf, config.seed, config.threads);
+    const std::string rdf_stage = name + " rdf";
+    const FractionProgress report_rdf = [&](double f) {
+      if (progress) progress(rdf_stage, f);
+    };
+    report_rdf(0.0);
+    result.rdf = radial_distribution(result.points, config.rdf, config.seed, config.threads, report_rdf);
   }
   if (on_result) on_result(result);
   if (!keep_points) result.points = PointSet{result.points.dimension, {}, result.points.domain};
@@ -319,20 +381,40 @@ std::vector<MethodResult> run_sampling(const SampleConfig& config, bool keep_poi
 std::string stats_csv_header() {
   return "dim,grid,method,points,nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,"
          "median_displacement,frac_unmoved,neighbour_disorder,lattice_order,seconds_generate,seconds_stats,seed,"
-         "protocol,domain_side,requested,notes\n";
+         "protocol,domain_side,requested,frequency,field_frequency,trace_time,dropped,skipped_updates,retraced,kept_at_site,"
+         "half_width,radius,saturated,notes\n";
 }
 
-std::string stats_csv_row(const SampleConfig& config, const MethodResult& r) {
+namespace {
+
+// One CSV field per value; empty when the value does not apply.
+std::string field_or_empty(const std::optional<double>& value) { return value ? format_real(*value) : std::string(); }
+std::string field_or_empty(const std::optional<std::uint64_t>& value) { return value ? std::to_string(*value) : std::string(); }
+std::string field_or_empty(const std::optional<bool>& value) { return value ? std::string(*value ? "1" : "0") : std::string(); }
+
+}  // namespace
+
+std::string stats_csv_row(const SampleConfig& config, const MethodResult& r, bool timing) {
+  std::string nearest = ",,,,";
+  if (r.measured)
+    nearest = fmt::format("{},{},{},{},{}", format_real(r.nearest.min), format_real(r.nearest.q01), format_real(r.nearest.median),
+                          format_real(r.nearest.mean), format_real(r.nearest.median_scaled));
   std::string displacement = ",,,,";  // no lattice: the columns stay empty
   if (r.displacement)
-    displacement = fmt::format("{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", r.displacement->rms, r.displacement->median,
-                               r.displacement->fraction_unmoved, r.displacement->neighbour_disorder,
-                               r.displacement->lattice_order);
-  return fmt::format("{},{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{},{:.6f},{:.6f},{},{},{:.9g},{},\"{}\"\n",
-                     config.dimension, config.grid, to_string(r.plan.method), r.nearest.points, r.nearest.min,
-                     r.nearest.q01, r.nearest.median, r.nearest.mean, r.nearest.median_scaled, displacement,
-                     r.seconds_generate, r.seconds_stats, config.seed, to_string(config.protocol), r.plan.domain.side,
-                     r.plan.requested, r.notes);
+    displacement = fmt::format("{},{},{},{},{}", format_real(r.displacement->rms), format_real(r.displacement->median),
+                               format_real(r.displacement->fraction_unmoved), format_real(r.displacement->neighbour_disorder),
+                               format_real(r.displacement->lattice_order));
+  const std::string seconds =
+      timing ? fmt::format("{:.6f},{}", r.seconds_generate, r.measured ? fmt::format("{:.6f}", r.seconds_stats) : "") : ",";
+  const GenerationFacts& f = r.facts;
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"\n", config.dimension,
+                     config.grid,
+                     to_string(r.plan.method), r.point_count,
+                     nearest, displacement, seconds, config.seed, to_string(config.protocol), format_real(r.plan.domain.side),
+                     r.plan.requested, field_or_empty(f.frequency), field_or_empty(f.field_frequency),
+                     field_or_empty(f.trace_time), field_or_empty(f.dropped), field_or_empty(f.skipped_updates),
+                     field_or_empty(f.retraced), field_or_empty(f.kept_at_site), field_or_empty(f.half_width),
+                     field_or_empty(f.radius), field_or_empty(f.saturated), r.notes);
 }
 
 std::string rdf_csv_header() { return "dim,method,r,g\n"; }

@@ -139,7 +139,7 @@ class CellGrid {
 }  // namespace
 
 template <int N>
-PoissonDiskResult poisson_disk(const PoissonDiskOptions& options, std::uint64_t seed) {
+PoissonDiskResult poisson_disk(const PoissonDiskOptions& options, std::uint64_t seed, const FractionProgress& progress) {
   options.validate(N);
   const Box& box = options.domain;
   const double r = options.radius;
@@ -151,8 +151,10 @@ PoissonDiskResult poisson_disk(const PoissonDiskOptions& options, std::uint64_t 
   std::vector<std::uint32_t> active;
   std::uint64_t counter = 0;
   auto uniform = [&](std::uint64_t lane) { return random_unit(seed, Stream::poisson_disk, counter, lane); };
+  const ProgressTicker ticker(progress, max_points);
   auto add = [&](const double* x) {
     const auto index = static_cast<std::uint32_t>(coordinates.size() / N);
+    ticker.tick(index + std::uint64_t{1});
     coordinates.insert(coordinates.end(), x, x + N);
     grid.insert(index, x);
     active.push_back(index);
@@ -198,8 +200,9 @@ PoissonDiskResult poisson_disk(const PoissonDiskOptions& options, std::uint64_t 
   return result;
 }
 
-PoissonDiskResult poisson_disk(int dimension, const PoissonDiskOptions& options, std::uint64_t seed) {
-  return dispatch_dimension(dimension, [&]<int N>() { return poisson_disk<N>(options, seed); });
+PoissonDiskResult poisson_disk(int dimension, const PoissonDiskOptions& options, std::uint64_t seed,
+                               const FractionProgress& progress) {
+  return dispatch_dimension(dimension, [&]<int N>() { return poisson_disk<N>(options, seed, progress); });
 }
 
 }  // namespace dfvn

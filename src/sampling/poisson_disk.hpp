@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "core/progress.hpp"
 #include "sampling/point_set.hpp"
 
 namespace dfvn {
@@ -34,10 +35,12 @@ struct PoissonDiskResult {
 // (offsets -1, 0, +1 per axis) whose box comes closer than r, pruned axis by axis. Every point that
 // could be closer than r is compared by its exact distance, so the guarantee holds in every dimension
 // (SciPy 1.10's grid of side r/sqrt(N) checks only +-2 cells, which misses conflicts for N >= 5).
-// Deterministic per seed: all randomness is keyed by (seed, candidate counter).
+// Deterministic per seed: all randomness is keyed by (seed, candidate counter). `progress`: points
+// placed over max_points (a saturated set stops short of 1).
 template <int N>
-PoissonDiskResult poisson_disk(const PoissonDiskOptions& options, std::uint64_t seed);
+PoissonDiskResult poisson_disk(const PoissonDiskOptions& options, std::uint64_t seed, const FractionProgress& progress = {});
 
-PoissonDiskResult poisson_disk(int dimension, const PoissonDiskOptions& options, std::uint64_t seed);
+PoissonDiskResult poisson_disk(int dimension, const PoissonDiskOptions& options, std::uint64_t seed,
+                               const FractionProgress& progress = {});
 
 }  // namespace dfvn

@@ -3,6 +3,7 @@
 #include "core/message_text.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -16,7 +17,7 @@
 namespace dfvn {
 
 // FLANN backend, in its own translation unit (stats/knn_flann.cpp) to keep FLANN's headers apart.
-std::vector<double> nearest_neighbour_distances_flann(const PointSet& points, int threads);
+std::vector<double> nearest_neighbour_distances_flann(const PointSet& points, int threads, const FractionProgress& progress);
 
 KnnBackend parse_knn_backend(std::string_view name) {
   if (name == "nanoflann") return KnnBackend::nanoflann;
@@ -29,14 +30,21 @@ std::string_view to_string(KnnBackend backend) { return backend == KnnBackend::n
 namespace {
 
 template <int N>
-std::vector<double> nearest_neighbour_distances_nanoflann(const PointSet& points, int threads) {
+std::vector<double> nearest_neighbour_distances_nanoflann(const PointSet& points, int threads, const FractionProgress& progress) {
   const PointSetAdaptor<N> adaptor{points};
   KdTree<N> tree(N, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(kKdTreeLeafSize));
   tree.buildIndex();
   const auto count = static_cast<std::int64_t>(points.size());
   std::vector<double> distances(static_cast<std::size_t>(count));
-#pragma omp parallel for schedule(dynamic, 4096) num_threads(resolve_threads(threads))
+  // Queries done, counted per chunk of the schedule; only the first thread reports.
+  constexpr std::int64_t kChunk = 4096;
+  std::atomic<std::uint64_t> queries_done{0};
+#pragma omp parallel for schedule(dynamic, kChunk) num_threads(resolve_threads(threads))
   for (std::int64_t i = 0; i < count; ++i) {
+    if (progress && i % kChunk == 0) {
+      const std::uint64_t done = queries_done.fetch_add(static_cast<std::uint64_t>(kChunk), std::memory_order_relaxed);
+      if (omp_get_thread_num() == 0) progress(std::min(1.0, static_cast<double>(done) / static_cast<double>(count)));
+    }
     std::uint32_t index[2];
     double dist2[2];
     nanoflann::KNNResultSet<double, std::uint32_t> result(2);
@@ -52,10 +60,16 @@ std::vector<double> nearest_neighbour_distances_nanoflann(const PointSet& points
 
 }  // namespace
 
-std::vector<double> nearest_neighbour_distances(const PointSet& points, KnnBackend backend, int threads) {
+std::vector<double> nearest_neighbour_distances(const PointSet& points, KnnBackend backend, int threads,
+                                                const FractionProgress& progress) {
   if (points.size() < 2) throw std::invalid_argument("nearest-neighbour statistics need at least 2 points");
-  if (backend == KnnBackend::flann) return nearest_neighbour_distances_flann(points, threads);
-  return dispatch_dimension(points.dimension, [&]<int N>() { return nearest_neighbour_distances_nanoflann<N>(points, threads); });
+  std::vector<double> distances =
+      backend == KnnBackend::flann
+          ? nearest_neighbour_distances_flann(points, threads, progress)
+          : dispatch_dimension(points.dimension,
+                               [&]<int N>() { return nearest_neighbour_distances_nanoflann<N>(points, threads, progress); });
+  if (progress) progress(1.0);
+  return distances;
 }
 
 double distance_between(const PointSet& points, std::size_t i, std::size_t j) {

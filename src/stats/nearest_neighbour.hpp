@@ -5,6 +5,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/progress.hpp"
 #include "sampling/point_set.hpp"
 
 namespace dfvn {
@@ -15,8 +16,10 @@ std::string_view to_string(KnnBackend backend);
 
 // For every point, the Euclidean distance to its nearest other point (k = 2 self-query on an exact
 // KD-tree; a duplicate point has distance 0). Needs at least 2 points. Independent of thread count.
-// Both backends only find the neighbour; its distance comes from distance_between().
-std::vector<double> nearest_neighbour_distances(const PointSet& points, KnnBackend backend, int threads);
+// Both backends only find the neighbour; its distance comes from distance_between(). `progress`:
+// queries done over points.
+std::vector<double> nearest_neighbour_distances(const PointSet& points, KnnBackend backend, int threads,
+                                                const FractionProgress& progress = {});
 
 // Euclidean distance between points i and j, summing squared differences over axes in order. Every
 // backend reports distances through this one function, so they agree to the last bit whenever they

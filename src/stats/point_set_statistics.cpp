@@ -8,12 +8,14 @@
 #include <fmt/format.h>
 
 #include "core/stopwatch.hpp"
+#include "io/csv.hpp"
 
 namespace dfvn {
 
-std::vector<double> nearest_neighbour_distances_any_dimension(const PointSet& points, KnnBackend backend, int threads) {
+std::vector<double> nearest_neighbour_distances_any_dimension(const PointSet& points, KnnBackend backend, int threads,
+                                                              const FractionProgress& progress) {
   if (points.size() < 2) throw std::invalid_argument("nearest-neighbour statistics need at least 2 points");
-  if (points.dimension != 1) return nearest_neighbour_distances(points, backend, threads);
+  if (points.dimension != 1) return nearest_neighbour_distances(points, backend, threads, progress);
   // 1D: after sorting, a point's nearest neighbour is the one before or after it.
   const std::size_t n = points.size();
   std::vector<std::size_t> order(n);
@@ -45,8 +47,12 @@ PointSetStatistics measure_point_set(const PointSet& points, const PointSetStati
   check_point_set(points);
   PointSetStatistics out;
   Stopwatch stopwatch;
-  if (progress) progress("statistics", 0.0);
-  out.nearest = summarize_nearest_neighbours(nearest_neighbour_distances_any_dimension(points, options.knn, options.threads), points);
+  const FractionProgress report = [&](double f) {
+    if (progress) progress("statistics", f);
+  };
+  report(0.0);
+  out.nearest = summarize_nearest_neighbours(
+      nearest_neighbour_distances_any_dimension(points, options.knn, options.threads, report), points);
   if (options.discrepancy) {
     for (std::size_t d = 0; d < std::size(kAllDiscrepancies); ++d) {
       const DiscrepancyKind kind = kAllDiscrepancies[d];
@@ -60,17 +66,25 @@ PointSetStatistics measure_point_set(const PointSet& points, const PointSetStati
   return out;
 }
 
+int point_statistics_stage_count(const PointSetStatisticsOptions& options) {
+  return 1 + (options.discrepancy ? static_cast<int>(std::size(kAllDiscrepancies)) : 0);
+}
+
 std::string point_statistics_csv_header() {
-  std::string header = "input,set,dim,points,nn_min,nn_median,nn_mean,nn_median_scaled,seconds_stats,domain_side";
+  std::string header =
+      "input,set,dim,points,nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,median_displacement,"
+      "frac_unmoved,neighbour_disorder,lattice_order,seconds_stats,domain_side";
   for (DiscrepancyKind kind : kAllDiscrepancies) header += "," + std::string(csv_column(kind));
   return header + "\n";
 }
 
 std::string point_statistics_csv_row(std::string_view input, std::string_view set, const PointSet& points,
-                                     const PointSetStatistics& s) {
-  std::string row = fmt::format("\"{}\",{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.6f},{:.9g}", input, set, points.dimension,
-                                s.nearest.points, s.nearest.min, s.nearest.median, s.nearest.mean, s.nearest.median_scaled,
-                                s.seconds, points.domain.side);
+                                     const PointSetStatistics& s, bool timing) {
+  // The five displacement columns stay empty: there are no lattice sites.
+  std::string row = fmt::format("\"{}\",{},{},{},{},{},{},{},{},,,,,,{},{}", input, set, points.dimension, s.nearest.points,
+                                format_real(s.nearest.min), format_real(s.nearest.q01), format_real(s.nearest.median),
+                                format_real(s.nearest.mean), format_real(s.nearest.median_scaled),
+                                timing ? fmt::format("{:.6f}", s.seconds) : std::string(), format_real(points.domain.side));
   for (const auto& value : s.discrepancies) row += value ? fmt::format(",{:.17g}", *value) : std::string(",");
   return row + "\n";
 }

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/progress.hpp"
 #include "sampling/point_set.hpp"
 #include "stats/discrepancy.hpp"
 #include "stats/nearest_neighbour.hpp"
@@ -29,20 +30,28 @@ struct PointSetStatistics {
 
 // Nearest-neighbour distances in any dimension >= 1: 1D by sorting (the KD-trees start at 2D),
 // otherwise nearest_neighbour_distances(). Needs at least 2 points.
-std::vector<double> nearest_neighbour_distances_any_dimension(const PointSet& points, KnnBackend backend, int threads);
+std::vector<double> nearest_neighbour_distances_any_dimension(const PointSet& points, KnnBackend backend, int threads,
+                                                              const FractionProgress& progress = {});
 
 // Throws std::invalid_argument if a point lies outside points.domain (naming the point and axis) or
 // there are fewer than 2 points.
 void check_point_set(const PointSet& points);
 
-using StatisticsProgress = std::function<void(std::string_view stage, double fraction)>;
+// Stages reported: "statistics" (queries done), then each discrepancy when asked.
+using StatisticsProgress = StageProgress;
 PointSetStatistics measure_point_set(const PointSet& points, const PointSetStatisticsOptions& options,
                                      const StatisticsProgress& progress = {});
 
-// CSV of `dfvn-sample stats`: input,set,dim,points,nn_min,nn_median,nn_mean,nn_median_scaled,
-// seconds_stats,domain_side,cd,wd,md,l2_star (the discrepancy columns empty unless computed).
+// Stages one measure_point_set call reports.
+int point_statistics_stage_count(const PointSetStatisticsOptions& options);
+
+// CSV of `dfvn-sample stats`: input,set,dim,points, the nearest-neighbour and displacement columns of the
+// sampling stats (nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,median_displacement,
+// frac_unmoved,neighbour_disorder,lattice_order), seconds_stats,domain_side,cd,wd,md,l2_star. The
+// displacement columns are empty (a file's points have no lattice sites to move from), the discrepancy
+// columns unless computed, seconds_stats with `timing` off.
 std::string point_statistics_csv_header();
 std::string point_statistics_csv_row(std::string_view input, std::string_view set, const PointSet& points,
-                                     const PointSetStatistics& statistics);
+                                     const PointSetStatistics& statistics, bool timing = true);
 
 }  // namespace dfvn

@@ -1,5 +1,6 @@
 #include "stats/radial_distribution.hpp"
 
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -43,7 +44,8 @@ void check_rdf_resolution(int dimension, double side, double r_max, int bins) {
 namespace {
 
 template <int N>
-RdfCurve radial_distribution_impl(const PointSet& points, const RdfOptions& options, std::uint64_t seed, int threads) {
+RdfCurve radial_distribution_impl(const PointSet& points, const RdfOptions& options, std::uint64_t seed, int threads,
+                                  const FractionProgress& progress) {
   const std::size_t n = points.size();
   if (n < 2) throw std::invalid_argument("the RDF needs at least 2 points");
   const double side = points.domain.side;
@@ -74,8 +76,13 @@ RdfCurve radial_distribution_impl(const PointSet& points, const RdfOptions& opti
   const auto q = static_cast<std::int64_t>(queries.size());
   const std::int64_t blocks = (q + kBlock - 1) / kBlock;
   std::vector<double> histograms(static_cast<std::size_t>(blocks * bins), 0.0);
+  std::atomic<std::int64_t> blocks_done{0};
 #pragma omp parallel for schedule(dynamic, 1) num_threads(resolve_threads(threads))
   for (std::int64_t b = 0; b < blocks; ++b) {
+    if (progress) {  // only the first thread reports
+      const std::int64_t done = blocks_done.fetch_add(1, std::memory_order_relaxed);
+      if (omp_get_thread_num() == 0) progress(static_cast<double>(done) / static_cast<double>(blocks));
+    }
     double* histogram = histograms.data() + b * bins;
     std::vector<std::pair<std::uint32_t, double>> matches;
     for (std::int64_t k = b * kBlock; k < std::min(q, (b + 1) * kBlock); ++k) {
@@ -112,9 +119,13 @@ RdfCurve radial_distribution_impl(const PointSet& points, const RdfOptions& opti
 
 }  // namespace
 
-RdfCurve radial_distribution(const PointSet& points, const RdfOptions& options, std::uint64_t seed, int threads) {
+RdfCurve radial_distribution(const PointSet& points, const RdfOptions& options, std::uint64_t seed, int threads,
+                             const FractionProgress& progress) {
   options.validate();
-  return dispatch_dimension(points.dimension, [&]<int N>() { return radial_distribution_impl<N>(points, options, seed, threads); });
+  RdfCurve curve = dispatch_dimension(
+      points.dimension, [&]<int N>() { return radial_distribution_impl<N>(points, options, seed, threads, progress); });
+  if (progress) progress(1.0);
+  return curve;
 }
 
 }  // namespace dfvn

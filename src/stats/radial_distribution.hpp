@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/progress.hpp"
 #include "sampling/point_set.hpp"
 
 namespace dfvn {
@@ -30,8 +31,10 @@ struct RdfCurve {
 // translation edge correction (Ohser and Stoyan 1981) for the cube of side L and volume V. For
 // uniform random points E[g(r)] = 1 at every r, edges and all. (The paper's script divides by
 // shell volume x n x n on a unit volume without correction, so its curves tend to 0.5 and sag.)
-// Independent of thread count: per-block histograms are summed in block order.
-RdfCurve radial_distribution(const PointSet& points, const RdfOptions& options, std::uint64_t seed, int threads);
+// Independent of thread count: per-block histograms are summed in block order. `progress`: query
+// points done over query points.
+RdfCurve radial_distribution(const PointSet& points, const RdfOptions& options, std::uint64_t seed, int threads,
+                             const FractionProgress& progress = {});
 
 // Throws std::invalid_argument unless every g(r) of an RDF with this r_max (at most 0.999 side) and
 // number of bins is finite for points in a cube of this side: a bin too narrow has a shell volume

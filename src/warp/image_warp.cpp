@@ -1,6 +1,7 @@
 #include "warp/image_warp.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -96,12 +97,17 @@ namespace {
 
 // Evaluates `value_at(point)` on an m x m grid of sub-pixel centres of every pixel and averages.
 template <typename PointFunction>
-FloatImage render(const WarpConfig& config, PointFunction&& value_at) {
+FloatImage render(const WarpConfig& config, PointFunction&& value_at, const FractionProgress& progress = {}) {
   FloatImage image{config.width, config.height, std::vector<float>(static_cast<std::size_t>(config.width) * config.height)};
   const int side = static_cast<int>(std::lround(std::sqrt(static_cast<double>(config.samples))));
   const double pixel = 1.0 / config.width;  // the image is one unit wide
+  std::atomic<int> rows_started{0};
 #pragma omp parallel for schedule(dynamic, 1) num_threads(resolve_threads(config.threads))
-  for (int row = 0; row < config.height; ++row)
+  for (int row = 0; row < config.height; ++row) {
+    if (progress) {  // rows started over rows; only the first thread reports
+      const int started = rows_started.fetch_add(1, std::memory_order_relaxed);
+      if (omp_get_thread_num() == 0) progress(static_cast<double>(started) / config.height);
+    }
     for (int col = 0; col < config.width; ++col) {
       double sum = 0.0;
       for (int a = 0; a < side; ++a)
@@ -109,6 +115,8 @@ FloatImage render(const WarpConfig& config, PointFunction&& value_at) {
           sum += value_at(Vec<2>((col + (b + 0.5) / side) * pixel, (row + (a + 0.5) / side) * pixel));
       image.values[static_cast<std::size_t>(row) * config.width + col] = static_cast<float>(sum / config.samples);
     }
+  }
+  if (progress) progress(1.0);
   return image;
 }
 
@@ -119,7 +127,8 @@ FloatImage source_image(const WarpConfig& config) {
   return render(config, [&](const Vec<2>& p) { return warp_pattern(config.pattern, p[0], p[1]); });
 }
 
-FloatImage warp_image(const WarpConfig& config, const WarpVariant& variant, std::int64_t* field_evaluations) {
+FloatImage warp_image(const WarpConfig& config, const WarpVariant& variant, std::int64_t* field_evaluations,
+                      const FractionProgress& progress) {
   config.validate();
   TraceOptions options;
   options.integrator = variant.integrator;
@@ -135,7 +144,7 @@ FloatImage warp_image(const WarpConfig& config, const WarpVariant& variant, std:
   FloatImage image = render(config, [&](const Vec<2>& p) {
     const Vec<2> q = tracer.trace(p, trace_time, &per_thread[static_cast<std::size_t>(omp_get_thread_num())]);
     return warp_pattern(config.pattern, q[0], q[1]);
-  });
+  }, progress);
   if (field_evaluations) {
     *field_evaluations = 0;
     for (const auto& s : per_thread) *field_evaluations += s.field_evaluations;

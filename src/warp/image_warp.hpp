@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/progress.hpp"
 #include "integrate/trace.hpp"
 
 namespace dfvn {
@@ -88,7 +89,9 @@ struct WarpVariant {
 // pattern is evaluated exactly where it lands (backward warping, no interpolation, no rounding).
 // Deterministic; thread-count independent. `field_evaluations`, if given, receives the number of
 // field evaluations: the deterministic measure of the work, which tests compare instead of times.
-FloatImage warp_image(const WarpConfig& config, const WarpVariant& variant, std::int64_t* field_evaluations = nullptr);
+// `progress`: image rows started over rows.
+FloatImage warp_image(const WarpConfig& config, const WarpVariant& variant, std::int64_t* field_evaluations = nullptr,
+                      const FractionProgress& progress = {});
 
 // The unwarped source image at the configured size and sampling.
 FloatImage source_image(const WarpConfig& config);

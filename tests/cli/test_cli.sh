@@ -85,7 +85,7 @@ expect_error "unknown noise basis" "" field --dim 3 --noise perlin9
 "$bin" reproduce table1 --help 2>&1 | grep -q -- "--noise" && "$bin" sample --help 2>&1 | grep -q -- "--noise" && ok ||
   bad "--noise on reproduce table1 and sample"
 [[ $(wc -l <"$work/s.csv") -eq 5 ]] && ok || bad "stats rows (cnj, jitter, pds, sobol)"
-"$bin" --help >"$work/out" 2>&1 && grep -q -- "--step-scale" "$work/out" && grep -q -- "--protocol" "$work/out" && ok || bad "sample --help"
+"$bin" sample --help >"$work/out" 2>&1 && grep -q -- "--step-scale" "$work/out" && grep -q -- "--protocol" "$work/out" && ok || bad "sample --help"
 expect_error "sample dim" "" --dim 9 --grid 4
 expect_error "sample grid" "" --dim 3 --grid 1
 expect_message "sample grid" "grid"

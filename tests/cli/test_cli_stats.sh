@@ -25,7 +25,8 @@ expect_error() {
   fi
 }
 
-header="input,set,dim,points,nn_min,nn_median,nn_mean,nn_median_scaled,seconds_stats,domain_side,cd,wd,md,l2_star"
+# The sampling stats' nearest-neighbour and displacement columns (issue 11), the displacement ones empty.
+header="input,set,dim,points,nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,median_displacement,frac_unmoved,neighbour_disorder,lattice_order,seconds_stats,domain_side,cd,wd,md,l2_star"
 
 # The same Sobol set as CSV and NPY gives the same statistics.
 "$bin" --dim 3 --grid 5 --methods sobol,jitter --protocol unit --points "$work/p" --format npy --quiet >/dev/null || bad "sample npy"
@@ -35,11 +36,14 @@ for f in sobol.npy sobol.csv; do
   head -1 "$work/$f.stats" | grep -qx "$header" && ok || bad "stats $f header: $(head -1 "$work/$f.stats")"
   [[ $(wc -l <"$work/$f.stats") -eq 2 ]] && ok || bad "stats $f: one row"
 done
-cut -d, -f3-8,11-14 "$work/sobol.npy.stats" >"$work/a"
-cut -d, -f3-8,11-14 "$work/sobol.csv.stats" >"$work/b"
+cut -d, -f3-14,16-20 "$work/sobol.npy.stats" >"$work/a"
+cut -d, -f3-14,16-20 "$work/sobol.csv.stats" >"$work/b"
 cmp -s "$work/a" "$work/b" && ok || bad "csv and npy statistics differ"
 # Without --discrepancy the columns are empty.
-"$bin" stats --input "$work/p/jitter.csv" | tail -1 | grep -q ",1,,,,$" && ok || bad "discrepancy columns not empty"
+"$bin" stats --input "$work/p/jitter.csv" | tail -1 | grep -q ",1.0,,,,$" && ok || bad "discrepancy columns not empty"
+# nn_q01 is filled, the displacement columns are empty (a file's points have no lattice sites).
+"$bin" stats --input "$work/p/jitter.csv" | tail -1 | awk -F, '{ exit !($6 != "" && $10 $11 $12 $13 $14 == "") }' && ok ||
+  bad "stats --input nn_q01 / displacement columns"
 # A headerless CSV in 1D and a dat file of two 2D sets (mean and sd rows).
 printf '0.1\n0.4\n0.9\n' >"$work/one.csv"
 "$bin" stats --input "$work/one.csv" | tail -1 | cut -d, -f3-5 | grep -qx "1,3,0.3" && ok || bad "1D csv"
@@ -47,8 +51,8 @@ printf '# set 0\n0.1 0.2\n0.3 0.4\n0.8 0.1\n#\n0.5 0.5\n0.2 0.9\n' >"$work/two.d
 "$bin" stats --input "$work/two.dat" --discrepancy >"$work/dat.stats" 2>"$work/err" && ok || bad "stats dat: $(cat "$work/err")"
 [[ $(cut -d, -f2 "$work/dat.stats" | tr '\n' ' ') == "set 0 1 mean sd " ]] && ok || bad "dat rows: $(cat "$work/dat.stats")"
 # Output does not depend on --threads (apart from the timing column).
-"$bin" stats --input "$work/p/sobol.npy" --discrepancy --threads 1 | cut -d, -f1-8,10- >"$work/t1"
-"$bin" stats --input "$work/p/sobol.npy" --discrepancy --threads 2 | cut -d, -f1-8,10- >"$work/t2"
+"$bin" stats --input "$work/p/sobol.npy" --discrepancy --threads 1 | cut -d, -f1-14,16- >"$work/t1"
+"$bin" stats --input "$work/p/sobol.npy" --discrepancy --threads 2 | cut -d, -f1-14,16- >"$work/t2"
 cmp -s "$work/t1" "$work/t2" && ok || bad "stats depend on --threads"
 
 # Bad files: one line naming the line, dtype or shape; no output file.

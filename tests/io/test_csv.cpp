@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <sstream>
+#include <vector>
 
 namespace dfvn {
 namespace {
@@ -73,6 +74,51 @@ TEST(Csv, DoublesRoundTrip) {
   }
   EXPECT_EQ(numbered_header("x", 3), "x0,x1,x2");
   EXPECT_EQ(numbered_header("f", 2, 1), "f1,f2");
+}
+
+
+PointTable read_text(const std::string& text, int dimension) {
+  std::istringstream in(text);
+  return read_points_text(in, dimension);
+}
+
+std::string text_error_of(const std::string& text, int dimension) {
+  try {
+    read_text(text, dimension);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// numpy.savetxt's default: spaces between numbers, '#' comments; the first line sets the dimension.
+TEST(Csv, ReadsWhitespaceSeparatedPointsAndInfersTheDimension) {
+  const PointTable t = read_text("# x0 x1 x2\n1.5e-01 2 3\n\t4  5\t6\n\n", 0);
+  EXPECT_EQ(t.dimension, 3);
+  EXPECT_EQ(t.coordinates, (std::vector<double>{0.15, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(read_text("x y\n1 2\n", 0).coordinates, (std::vector<double>{1, 2}));  // a header line
+  const PointTable csv = read_text("x0,x1\n0.5,0.25\n", 0);
+  EXPECT_EQ(csv.dimension, 2);
+  EXPECT_EQ(csv.coordinates, (std::vector<double>{0.5, 0.25}));
+  EXPECT_EQ(read_text("1 2 3\n", 3).dimension, 3);
+}
+
+TEST(Csv, WhitespaceErrorsNameTheLineAndTheDimensionsOrigin) {
+  EXPECT_EQ(text_error_of("1 2 3\n4 5\n", 0), "line 2: expected 3 whitespace-separated columns (as in the first line), found 2");
+  EXPECT_EQ(text_error_of("1 2 3\n4 5\n", 3), "line 2: expected 3 whitespace-separated columns (--dim 3), found 2");
+  EXPECT_EQ(text_error_of("1,2,3\n4,5\n", 0), "line 2: expected 3 comma-separated columns (as in the first line), found 2");
+  EXPECT_EQ(text_error_of("1 2\n3 zz\n", 0), "line 2, column 2: 'zz' is not a number");
+  EXPECT_EQ(text_error_of("1 nan\n", 0), "line 1, column 2: 'nan' is not a finite number (NaN and Inf are not allowed)");
+  EXPECT_EQ(text_error_of("# only a comment\n", 0), "no points in the input");
+}
+
+TEST(Csv, RealsKeepTheirTypeInEveryRun) {
+  EXPECT_EQ(format_real(1.0), "1.0");
+  EXPECT_EQ(format_real(0.6), "0.6");
+  EXPECT_EQ(format_real(0.1 * 6), "0.6");  // nine significant digits
+  EXPECT_EQ(format_real(1e-5), "1e-05");
+  EXPECT_EQ(format_real(-3.0), "-3.0");
+  EXPECT_EQ(format_real(123456789012.0), "1.23456789e+11");
 }
 
 }  // namespace
