@@ -27,7 +27,7 @@ struct LatticeSpec {
 // x_i - site_i for a point set in lattice order (point i moved from site i): K^N x N, row-major.
 std::vector<double> lattice_displacements(const LatticeSpec& lattice, const PointSet& points);
 
-// Half-width of the uniform jitter: paper: delta/2 = 0.05 whatever K (PROTOCOL.md); unit: 1/(2K).
+// Half-width of the uniform jitter: paper: delta/2 = 0.05 whatever K (data/PROTOCOL.md); unit: 1/(2K).
 double jitter_half_width(const LatticeSpec& lattice);
 
 // The paper's delta = 0.1, the lattice step for K = 10 and the PDS radius of Table 1.
