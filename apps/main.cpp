@@ -442,7 +442,7 @@ struct ReproduceCommand {
     t1->add_option("--out", out1, "Output directory")->capture_default_str();
     t1->add_option("--dims", dims, "Dimensions: a range or list within 3..7, e.g. 3-7 or 3,5")->capture_default_str();
     t1->add_option("--realizations", table1_realizations,
-                   "Realizations R (seeds s..s+R-1); cells are mean +- sd over them (about 33 s each for 3D-7D on 2 cores)")
+                   "Realizations R (seeds s..s+R-1); cells are mean +- sd over them (each about 100 s for 3D-7D on 2 cores)")
         ->capture_default_str()
         ->check(CLI::Range(1, 1000));
     add_noise_option(*t1, table1_noise);  // the CNJ column; the simplex column is always shown beside it

@@ -21,16 +21,16 @@ do for [row = 1:rows] {
   d = int(word(ARG4, row))
   do for [col = 1:3] {
     set table $jitter separator comma
-    plot ARG3 skip 1 using (column(jitter_columns[col])):7 with table if (column(1) == d)
+    plot ARG3 skip 1 using (column(jitter_columns[col])):7 with table if (real(strcol(1)) == d)
     set table $cnj separator comma
-    plot ARG2 skip 1 using (column(cnj_columns[col])):14 with table if (column(1) == d && strcol(3) eq word(ARG5, 1))
+    plot ARG2 skip 1 using (column(cnj_columns[col])):14 with table if (real(strcol(1)) == d && strcol(3) eq word(ARG5, 1))
     do for [b = 2:bases] {
       set print $cnj append
       print ""
       print ""
       unset print
       set table $cnj append separator comma
-      plot ARG2 skip 1 using (column(cnj_columns[col])):14 with table if (column(1) == d && strcol(3) eq word(ARG5, b))
+      plot ARG2 skip 1 using (column(cnj_columns[col])):14 with table if (real(strcol(1)) == d && strcol(3) eq word(ARG5, b))
     }
     unset table
     set title sprintf('%dD', d)

@@ -29,14 +29,14 @@ set key bottom left font 'sans,8'
 do for [f = 1:6] {
   # One datablock, one index (blocks separated by two blank lines) per method.
   set table $cells separator comma
-  plot ARG2 skip 1 using 5:6:7 with table if (column(1) == d && strcol(2) eq families[f] && strcol(3) eq word(ARG4, 1))
+  plot ARG2 skip 1 using 5:6:7 with table if (real(strcol(1)) == d && strcol(2) eq families[f] && strcol(3) eq word(ARG4, 1))
   do for [i = 2:methods] {
     set print $cells append
     print ""
     print ""
     unset print
     set table $cells append separator comma
-    plot ARG2 skip 1 using 5:6:7 with table if (column(1) == d && strcol(2) eq families[f] && strcol(3) eq word(ARG4, i))
+    plot ARG2 skip 1 using 5:6:7 with table if (real(strcol(1)) == d && strcol(2) eq families[f] && strcol(3) eq word(ARG4, i))
   }
   unset table
   n0 = word(ARG5, 2 * f - 1)

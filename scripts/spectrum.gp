@@ -8,7 +8,7 @@ power_floor = 1e-3  # the colour scale's floor: a periodogram can be 0 at a freq
 set datafile separator comma
 set table $plane separator comma
 if (dim == 3) {
-  plot ARG2 skip 1 using 1:2:($4 > power_floor ? $4 : power_floor) with table if ($3 == 0)
+  plot ARG2 skip 1 using 1:2:($4 > power_floor ? $4 : power_floor) with table if (real(strcol(3)) == 0)
 } else {
   plot ARG2 skip 1 using 1:2:($3 > power_floor ? $3 : power_floor) with table
 }

@@ -21,8 +21,8 @@ struct Table1Config {
   std::vector<int> dimensions = {3, 4, 5, 6, 7};
   std::uint64_t seed = 1;
   // Realizations R: seeds seed..seed+R-1, every cell reported as mean and standard deviation (the 7D
-  // NN minimum varies by +-30% between seeds). 3 keeps the whole table near two minutes on 2 cores
-  // (measured: about 33 s per realization for 3D-7D, most of it 7D; README, "Reproducing the paper").
+  // NN minimum varies by +-30% between seeds). One realization of 3D-7D took 97 s on a shared 2-core
+  // Xeon (7D 76 s of it, its Poisson disk set 48 s), so 3 keeps the table near 5 minutes, like Table 2.
   int realizations = 3;
   int threads = 0;
   CnjOptions cnj;         // our documented defaults (the paper's step and frequency are unpublished)

@@ -181,7 +181,7 @@ std::string table1_markdown(const Table1Result& result) {
         paper_total += p->seconds;
       }
     wall_total += result.wall_seconds[d];
-    wall += fmt::format("{}{}D {:.1f} s", wall.empty() ? "" : ", ", result.configs[d].dimension, result.wall_seconds[d] / R);
+    wall += fmt::format("{}{}D {:.3g} s", wall.empty() ? "" : ", ", result.configs[d].dimension, result.wall_seconds[d] / R);
   }
   md += fmt::format("- **Time** on {}: {:.1f} s for the table's cells{} against {:.0f} s in the paper (a {:.0f}x ratio; "
                     "different machines and languages, the paper's are single runs). The whole run took {:.0f} s, per "
