@@ -23,7 +23,8 @@ do for [row = 1:rows] {
   d = int(word(ARG3, row))
   x_max = real(word(ARG5, row))
   set xrange [0:x_max]
-  set xtics (x_max > 0.3 ? 0.1 : 0.05)  # readable tick labels in 1400 / 4 pixels
+  x_step = x_max > 0.3 ? 0.1 : 0.05  # readable tick labels in 1400 / 4 pixels
+  set xtics x_step
   do for [col = 1:4] {
     median_text = word(ARG4, 4 * (row - 1) + col)
     set table $panel separator comma
