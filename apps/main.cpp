@@ -24,6 +24,7 @@
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 #include "io/json_report.hpp"
+#include "io/markdown_text.hpp"
 #include "io/point_file.hpp"
 #include "reproduce/cnj_study.hpp"
 #include "noise/noise_domain.hpp"
@@ -536,6 +537,7 @@ struct ReproduceCommand {
   CLI::Option* second_width_option = nullptr;
   std::string table1_noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
   ProgressOptions progress;
+  int table1_realizations = dfvn::Table1Config{}.realizations;
 
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand("reproduce", "Regenerate the paper's tables and figures, ours beside the paper's.");
@@ -544,9 +546,13 @@ struct ReproduceCommand {
     CLI::App* t1 = cmd->add_subcommand(
         "table1",
         "Table 1 and Figure 4: CNJ, jittering, Poisson disk and Sobol point sets in 3D-7D under the paper protocol.\n"
-        "Writes DIR/table1.csv, DIR/rdf.csv, DIR/table1.md and (with gnuplot) DIR/figure4.png; prints table1.md.");
+        "Writes DIR/table1.csv, DIR/rdf.csv, DIR/table1.md and (with gnuplot) DIR/figure4.png; prints table1.md as plain text.");
     t1->add_option("--out", out1, "Output directory")->capture_default_str();
     t1->add_option("--dims", dims, "Dimensions: a range or list within 3..7, e.g. 3-7 or 3,5")->capture_default_str();
+    t1->add_option("--realizations", table1_realizations,
+                   "Realizations R (seeds s..s+R-1); cells are mean +- sd over them (each about 100 s for 3D-7D on 2 cores)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1000));
     add_noise_option(*t1, table1_noise);  // the CNJ column; the simplex column is always shown beside it
     progress.add_to(*t1);
     add_common_options(*t1, common1);
@@ -557,7 +563,7 @@ struct ReproduceCommand {
         "Table 2 and Figure 5: warp a wave image along 2D DFVN for t = 0.5 with Euler and RK4, 64 and 512 steps, 0, 1\n"
         "and 10 Newton reprojection steps, against 2048 RK4 steps; RMSE from float values at two resolutions; Figure 5's\n"
         "top row at several times t with 1000 RK4 steps. Writes DIR/table2.csv, DIR/table2.md, DIR/timeline.csv, the\n"
-        "images as PNG and (with gnuplot) DIR/figure5.png; prints table2.md.");
+        "images as PNG and (with gnuplot) DIR/figure5.png; prints table2.md as plain text.");
     t2->add_option("--out", out2, "Output directory")->capture_default_str();
     t2->add_option("--setting", setting,
                    "shader: the paper's shader (2D quintic gradient noise, noise_scale 7, its unnormalised field\n"
@@ -592,7 +598,7 @@ struct ReproduceCommand {
         "spacing and step scales 0.2, 0.35, 0.5, compared at equal RMS displacement, neighbour disorder and lattice\n"
         "order (--lattice interior: interior points of a K^N lattice, nothing dropped; --lattice paper: Table 1's\n"
         "lattice, points leaving [0,1]^N dropped as the paper does). Writes DIR/cnj_study.csv,\n"
-        "DIR/cnj_study_jitter.csv, DIR/cnj_study.md and (with gnuplot) DIR/cnj_study.png; prints the Markdown.\n"
+        "DIR/cnj_study_jitter.csv, DIR/cnj_study.md and (with gnuplot) DIR/cnj_study.png; prints the Markdown as plain text.\n"
         "The CNJ defaults come from this study's rule (data/cnj_defaults.md).");
     s->add_option("--out", study.out_dir, "Output directory")->capture_default_str();
     s->add_option("--dims", study_dims, "Dimensions: a range or list within 3..7, e.g. 3-7 or 3,5")->capture_default_str();
@@ -629,7 +635,7 @@ struct ReproduceCommand {
     dfvn::ProgressReporter* reporter = progress.make();
     const auto result = dfvn::run_cnj_study(study, reporter->callback());
     reporter->complete();
-    std::fputs(dfvn::write_cnj_study(result, log).c_str(), stdout);
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_cnj_study(result, log)).c_str(), stdout);
   }
 
   void add_integration(CLI::App* cmd) {
@@ -637,7 +643,7 @@ struct ReproduceCommand {
         "integration",
         "Section 6.1's open question: integrate Genz's six test families with every method's point sets in 3D-7D, at\n"
         "several sizes, over R realizations. Writes DIR/integration.csv, DIR/integration_slopes.csv, DIR/integration.md\n"
-        "(tables and a reading) and (with gnuplot) DIR/integration_<N>d.png; prints integration.md.");
+        "(tables and a reading) and (with gnuplot) DIR/integration_<N>d.png; prints integration.md as plain text.");
     t3->add_option("--out", integration.out_dir, "Output directory")->capture_default_str();
     t3->add_option("--dims", integration_dims, "Dimensions: a range or list within 3..7")->capture_default_str();
     t3->add_option("--realizations", integration.realizations, "Realizations R (seeds s..s+R-1); at least 16 for the reading")
@@ -664,7 +670,7 @@ struct ReproduceCommand {
     dfvn::ProgressReporter* reporter = progress.make();
     const auto result = dfvn::run_integration(integration, reporter->callback());
     reporter->complete();
-    std::fputs(dfvn::write_integration(result, log).c_str(), stdout);
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_integration(result, log)).c_str(), stdout);
   }
 
   static void log(const std::string& line) { std::fprintf(stderr, "%s: %s\n", kProgram, line.c_str()); }
@@ -676,11 +682,12 @@ struct ReproduceCommand {
     config.seed = common1.seed;
     config.threads = common1.threads;
     config.out_dir = out1;
+    config.realizations = table1_realizations;
     make_output_dir(out1);
     dfvn::ProgressReporter* reporter = progress.make();
     const auto result = dfvn::run_table1(config, reporter->callback());
     reporter->complete();
-    std::fputs(dfvn::write_table1(config, result, log).c_str(), stdout);
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_table1(config, result, log)).c_str(), stdout);
   }
 
   void run_table2() {
@@ -703,7 +710,7 @@ struct ReproduceCommand {
     dfvn::ProgressReporter* reporter = progress.make();
     const auto result = dfvn::run_table2(table2, reporter->callback());
     reporter->complete();
-    std::fputs(dfvn::write_table2(out2, result, log).c_str(), stdout);
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_table2(out2, result, log)).c_str(), stdout);
   }
 };
 

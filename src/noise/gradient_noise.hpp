@@ -17,7 +17,7 @@ namespace dfvn {
 // with s the quintic fade (noise/quintic_fade.hpp), i = 0..N-2:
 // - g_ic: a gradient hashed from (function, lattice point) with every component uniform in [-1, 1],
 //   independently: the distribution of the shader's hash (Quilez's 3D gradient noise; at z = 0 its
-//   value and x, y derivatives are exactly this 2D noise, PROTOCOL.md Table 2).
+//   value and x, y derivatives are exactly this 2D noise, data/PROTOCOL.md Table 2).
 // - o_i: an offset uniform in [0, 1)^N, so that no lattice point sits at the origin.
 // - R_i: the identity for i = 0 (so the 2D basis is the shader's axis-aligned noise) and a seeded
 //   Haar-random rotation for i >= 1. An offset alone would not make the functions independent: the

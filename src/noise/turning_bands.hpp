@@ -13,7 +13,7 @@
 namespace dfvn {
 
 // n_i(x) = K^(-1/2) sum_{k<K} p_ik(w_ik . x + o_ik), i = 0..N-2, K = 2N bands per function (Matheron's
-// turning bands; the recipe of reference/NOISE_STUDY.md):
+// turning bands; the recipe of data/NOISE_STUDY.md):
 // - w_ik: the 2N rows of two seeded random orthonormal frames of function i (Haar-distributed, from the
 //   QR factorisation of a Gaussian matrix). Two full frames make sum_k w_ik w_ik^T = 2 I, so every
 //   gradient is isotropic: E[grad n_i grad n_i^T] = (sigma^2 / N) I with sigma^2 = E p'^2. Directions

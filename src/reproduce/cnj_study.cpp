@@ -12,6 +12,7 @@
 
 #include "core/stopwatch.hpp"
 #include "io/atomic_file.hpp"
+#include "plot/gnuplot.hpp"
 #include "reproduce/reproduce.hpp"
 #include "sampling/curl_noise_jitter.hpp"
 #include "sampling/jitter.hpp"
@@ -462,7 +463,12 @@ std::string write_cnj_study(const CnjStudyResult& result, const Log& log) {
   write_file_atomically((dir / "cnj_study.csv").string(), rows);
   write_file_atomically((dir / "cnj_study_jitter.csv").string(), curve);
   write_file_atomically((dir / "cnj_study.md").string(), md);
-  plot_figure("plot_cnj_study.sh", dir.string(), "cnj_study.png", log);
+  std::string dims, bases;
+  for (int d : result.config.dimensions) dims += fmt::format("{} ", d);
+  for (const CnjStudyRow& r : result.rows)
+    if (bases.find(std::string(to_string(r.basis)) + " ") == std::string::npos) bases += std::string(to_string(r.basis)) + " ";
+  draw_figure(PlotProgram::cnj_study, (dir / "cnj_study.png").string(),
+              {(dir / "cnj_study.csv").string(), (dir / "cnj_study_jitter.csv").string(), dims, bases}, log);
   return md;
 }
 

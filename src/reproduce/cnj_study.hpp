@@ -107,7 +107,8 @@ struct CnjDefaultsChoice {
 std::optional<CnjDefaultsChoice> choose_cnj_defaults(const CnjStudyResult& result);
 
 // DIR/cnj_study.csv (one row per run), DIR/cnj_study_jitter.csv (the reference curve), DIR/cnj_study.md
-// (the reading) and, with gnuplot, DIR/cnj_study.png. Returns the Markdown.
+// (the reading) and, with gnuplot, DIR/cnj_study.png (scripts/cnj_study.gp). Returns the Markdown;
+// throws PlotError when gnuplot fails.
 std::string write_cnj_study(const CnjStudyResult& result, const Log& log);
 std::string cnj_study_markdown(const CnjStudyResult& result);
 

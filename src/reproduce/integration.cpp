@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "io/atomic_file.hpp"
+#include "plot/gnuplot.hpp"
 #include "stats/realizations.hpp"
 
 namespace dfvn {
@@ -266,8 +267,22 @@ std::string write_integration(const IntegrationResult& result, const Log& log) {
   for (const auto& [name, text] :
        {std::pair{"integration.csv", cells}, {"integration_slopes.csv", slopes}, {"integration.md", md}})
     write_file_atomically((std::filesystem::path(dir) / name).string(), text);
-  // One run of the script draws every dimension's figure.
-  plot_figure("plot_integration.sh", dir, fmt::format("integration_{}d.png", result.config.dimensions.front()), log);
+  // One figure per dimension (scripts/integration.gp).
+  std::string methods;
+  for (Method m : result.config.methods) methods += fmt::format("{}{}", methods.empty() ? "" : " ", to_string(m));
+  for (int d : result.config.dimensions) {
+    // The n^-1/2 guide of each family runs through random's smallest set, when random was run.
+    std::string guides;
+    for (GenzFamily family : kGenzFamilies) {
+      const IntegrationCell* first = nullptr;
+      for (const auto& c : result.cells)
+        if (c.dimension == d && c.family == family && c.method == Method::random && (!first || c.points < first->points))
+          first = &c;
+      guides += first ? fmt::format("{:.9g} {:.9g} ", first->points, first->rms_relative_error) : std::string("- - ");
+    }
+    draw_figure(PlotProgram::integration, (std::filesystem::path(dir) / fmt::format("integration_{}d.png", d)).string(),
+                {(std::filesystem::path(dir) / "integration.csv").string(), std::to_string(d), methods, guides}, log);
+  }
   return md;
 }
 

@@ -54,8 +54,8 @@ struct IntegrationResult {
 IntegrationResult run_integration(const IntegrationConfig& config, const StageProgress& progress = {});
 
 // DIR/integration.csv (the cells), DIR/integration_slopes.csv, DIR/integration.md (tables and a
-// reading) and, with gnuplot, DIR/integration_<N>d.png (scripts/plot_integration.sh). Returns the
-// Markdown.
+// reading) and, with gnuplot, DIR/integration_<N>d.png (scripts/integration.gp). Returns the
+// Markdown; throws PlotError when gnuplot fails.
 std::string write_integration(const IntegrationResult& result, const Log& log);
 std::string integration_markdown(const IntegrationResult& result);
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sampling/experiment.hpp"
+#include "stats/realizations.hpp"
 #include "warp/image_warp.hpp"
 
 namespace dfvn {
@@ -19,10 +20,16 @@ using Log = std::function<void(const std::string&)>;
 struct Table1Config {
   std::vector<int> dimensions = {3, 4, 5, 6, 7};
   std::uint64_t seed = 1;
+  // Realizations R: seeds seed..seed+R-1, every cell reported as mean and standard deviation (the 7D
+  // NN minimum varies by +-30% between seeds). One realization of 3D-7D took 97 s on a shared 2-core
+  // Xeon (7D 76 s of it, its Poisson disk set 48 s), so 3 keeps the table near 5 minutes, like Table 2.
+  int realizations = 3;
   int threads = 0;
   CnjOptions cnj;         // our documented defaults (the paper's step and frequency are unpublished)
   RdfOptions rdf;
   std::string out_dir = "table1";
+
+  void validate() const;  // throws std::invalid_argument naming the option
 };
 
 // Table 1's K: 10 for 3D-5D, 7 for 6D, 6 for 7D (Section 5.1). Throws for dimensions outside 3..7.
@@ -31,17 +38,36 @@ int table1_grid(int dimension);
 // "3-7", "3,5,7" or "4" -> dimensions in 3..7; throws std::invalid_argument otherwise.
 std::vector<int> parse_dimension_list(std::string_view text);
 
+// One cell of Table 1 over the realizations.
+struct Table1Cell {
+  MeanSd nn_median, nn_min, seconds, points;  // seconds: generation plus statistics
+  double smallest_min = 0.0;                  // the smallest NN minimum of any realization
+};
+
 struct Table1Result {
-  std::vector<SampleConfig> configs;               // one per dimension
-  std::vector<std::vector<MethodResult>> results;  // per dimension, per method (cnj, jitter, pds, sobol)
-  // Per dimension: CNJ with the paper's construction (simplex noise), beside ours (the default basis).
-  std::vector<MethodResult> simplex_cnj;
+  std::vector<SampleConfig> configs;  // one per dimension, with the first realization's seed
+  int realizations = 1;
+  // runs[d][r]: dimension d, realization r (seed + r), one result per method (cnj, jitter, pds, sobol).
+  // Only the first realization carries the RDFs (rdf.csv, Figure 4).
+  std::vector<std::vector<std::vector<MethodResult>>> runs;
+  // simplex_cnj[d][r]: CNJ with the paper's construction (simplex noise), beside ours (the default basis).
+  std::vector<std::vector<MethodResult>> simplex_cnj;
+  std::vector<double> wall_seconds;  // per dimension, every realization and column together
+  std::string machine;               // where the times were measured (core/machine.hpp)
+
+  // The first realization's results of dimension index d (with the RDFs).
+  const std::vector<MethodResult>& first(std::size_t d) const { return runs[d].front(); }
+  // Mean and sd over the realizations of one method; the simplex column with `simplex`. Throws
+  // std::out_of_range if the method was not run.
+  Table1Cell cell(std::size_t d, Method method, bool simplex = false) const;
 };
 
 Table1Result run_table1(const Table1Config& config, const StageProgress& progress = {});
 
-// DIR/table1.csv, DIR/rdf.csv, DIR/table1.md; then DIR/figure4.png through scripts/plot_figure4.sh
-// when gnuplot is installed (otherwise `log` says how to get it). Returns the Markdown.
+// DIR/table1.csv (one row per realization, column and dimension, then mean and sd rows), DIR/rdf.csv
+// (the first realization), DIR/table1.md; then DIR/figure4.png (scripts/figure4.gp) when gnuplot is
+// installed (otherwise `log` says how to get it). Returns the Markdown; throws PlotError when gnuplot
+// fails.
 std::string write_table1(const Table1Config& config, const Table1Result& result, const Log& log);
 std::string table1_markdown(const Table1Result& result);
 
@@ -75,6 +101,7 @@ struct Table2Result {
   WarpConfig second;  // the second resolution's configuration (width 0 if none)
   double reference_seconds = 0.0;
   int threads = 1;
+  std::string machine;  // where the times were measured (core/machine.hpp)
   std::vector<Table2Row> rows;
   std::vector<FloatImage> images;    // per row, at the main resolution
   FloatImage source, reference;
@@ -88,7 +115,7 @@ Table2Result run_table2(const Table2Config& config, const StageProgress& progres
 
 // DIR/table2.csv, DIR/table2.md, DIR/<variant>.png, DIR/source.png, DIR/reference.png,
 // DIR/timeline.csv with DIR/time-<t>.png, and, with gnuplot, DIR/figure5.png
-// (scripts/plot_figure5.sh). Returns the Markdown.
+// (scripts/figure5.gp). Returns the Markdown; throws PlotError when gnuplot fails.
 std::string write_table2(const std::string& out_dir, const Table2Result& result, const Log& log);
 std::string table2_markdown(const Table2Result& result);
 
@@ -103,8 +130,5 @@ struct Table2Conclusions {
 };
 // At the main resolution, or with `second` at the second one.
 Table2Conclusions table2_conclusions(const Table2Result& result, bool second = false);
-
-// Runs scripts/<script> DIR if gnuplot is available; logs what happened. True if the figure exists.
-bool plot_figure(const std::string& script, const std::string& out_dir, const std::string& figure, const Log& log);
 
 }  // namespace dfvn

@@ -70,7 +70,7 @@ MethodPlan plan_method(const SampleConfig& config, Method method) {
   MethodPlan plan{method, lattice_points, Box{0.0, 1.0}, 0.0};
   const bool paper = config.protocol == Protocol::paper;
   // paper: PDS and Sobol live on [0, delta K]^N, the box a 0.1-spaced K^N lattice would fill
-  // (PROTOCOL.md): the unit cube for K = 10, [0, 0.7]^6 and [0, 0.6]^7 in Table 1.
+  // (data/PROTOCOL.md): the unit cube for K = 10, [0, 0.7]^6 and [0, 0.6]^7 in Table 1.
   const Box paper_box{0.0, kPaperDelta * config.grid};
   // The ball's and the sphere's counts are counted site by site up to kExactCountLimit lattice points
   // (about a second); beyond, where the memory check refuses the run on any usual machine, they are

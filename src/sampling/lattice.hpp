@@ -31,7 +31,7 @@ std::vector<double> lattice_displacements(const LatticeSpec& lattice, const Poin
 // point counts, lattices come in K^N. Throws std::invalid_argument for count 0, a dimension < 1 or K >= 2^30.
 int grid_for_count(int dimension, std::uint64_t count);
 
-// Half-width of the uniform jitter: paper: delta/2 = 0.05 whatever K (PROTOCOL.md); unit: 1/(2K).
+// Half-width of the uniform jitter: paper: delta/2 = 0.05 whatever K (data/PROTOCOL.md); unit: 1/(2K).
 double jitter_half_width(const LatticeSpec& lattice);
 
 // The paper's delta = 0.1, the lattice step for K = 10 and the PDS radius of Table 1.

@@ -44,7 +44,7 @@ enum class Method { cnj, jitter, pds, sobol, random, halton, lhs };
 Method parse_method(std::string_view name);  // throws std::invalid_argument listing the names
 std::string_view to_string(Method method);
 
-// paper: Section 5.1 exactly as reference/PROTOCOL.md establishes it. unit: every method in the unit
+// paper: Section 5.1 exactly as data/PROTOCOL.md establishes it. unit: every method in the unit
 // cube at the density of a cell-centred K^N lattice.
 enum class Protocol { paper, unit };
 Protocol parse_protocol(std::string_view name);

@@ -12,6 +12,7 @@
 #include "core/parallel.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
+#include "plot/gnuplot.hpp"
 
 namespace dfvn {
 
@@ -113,14 +114,8 @@ void write_spectrum_files(const std::string& prefix, const PowerSpectrum& spectr
                    spectrum.shell_counts[r]);
   write_file_atomically(prefix + ".csv", grid);
   write_file_atomically(prefix + "_radial.csv", radial);
-  const std::filesystem::path script = std::filesystem::path(DFVN_SOURCE_DIR) / "scripts" / "plot_spectrum.sh";
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
-    log(fmt::format("{}.png not written: gnuplot is not installed (apt-get install gnuplot-nox; then bash {} {})", prefix,
-                    script.string(), prefix));
-    return;
-  }
-  const std::string command = fmt::format("bash '{}' '{}' {}", script.string(), prefix, spectrum.dimension);
-  if (std::system(command.c_str()) != 0) log(fmt::format("{}.png not written: '{}' failed", prefix, command));
+  draw_figure(PlotProgram::spectrum, prefix + ".png", {prefix + ".csv", prefix + "_radial.csv", std::to_string(spectrum.dimension)},
+              log);
 }
 
 }  // namespace dfvn

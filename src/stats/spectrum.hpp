@@ -33,8 +33,8 @@ struct PowerSpectrum {
 PowerSpectrum power_spectrum(const std::vector<PointSet>& sets, int max_frequency, int threads);
 
 // PREFIX.csv: k0,..,k{N-1},power for every frequency; PREFIX_radial.csv: frequency,power,anisotropy_db,
-// frequencies (the shell's count). Then PREFIX.png through scripts/plot_spectrum.sh when gnuplot is
-// installed (otherwise `log` says how to get it).
+// frequencies (the shell's count). Then PREFIX.png (scripts/spectrum.gp, src/plot/gnuplot.hpp) when gnuplot is
+// installed (otherwise `log` says how to get it). Throws PlotError if gnuplot fails.
 void write_spectrum_files(const std::string& prefix, const PowerSpectrum& spectrum,
                           const std::function<void(const std::string&)>& log);
 

@@ -28,7 +28,7 @@ struct FloatImage {
 // The source image, a function of the point (x across the width in [0, 1], y down the height in
 // [0, height / width]) that can be evaluated exactly wherever a trace lands:
 // - sine_stripes: 10 smooth vertical sine stripes bent by a gentle horizontal wave (our earlier image).
-// - shader_bands: the shader's wave image (PROTOCOL.md, Table 2): horizontal bands 0.1 high whose
+// - shader_bands: the shader's wave image (data/PROTOCOL.md, Table 2): horizontal bands 0.1 high whose
 //   boundaries are displaced by the wave 0.05 |cos(10 pi (x - y))|, band k (mod 10) at grey level
 //   (17 k mod 13) / 13 (the shader maps that level through viridis; we keep it grey). Piecewise
 //   constant, so a pixel's error is 0 or a whole band step: RMSE measures the area whose band changed.
@@ -61,7 +61,7 @@ struct WarpConfig {
   void validate() const;  // throws std::invalid_argument naming the option
 };
 
-// The paper's shader (PROTOCOL.md, Table 2; the authors' Shaders/image_warping.glsl): 2D quintic
+// The paper's shader (data/PROTOCOL.md, Table 2; the authors' Shaders/image_warping.glsl): 2D quintic
 // gradient noise n with gradient components uniform in [-1, 1], noise_scale 7 lattice cells across the
 // image width, t = 0.5, and the velocity rot90(7 grad n(7 x)), i.e. the raw noise's gradient without
 // any normalisation. Our basis has the shader's distribution, so the same field is ours at

@@ -271,7 +271,7 @@ TYPED_TEST(NoiseBasisTest, WavenumberMatchesItsMeasurement) {
 }
 
 // The closed-form band moments: E p'^2 = 20/77 exactly (integrate the polynomials by hand or with any
-// CAS), E p^2 = 535/27027; reference/NOISE_STUDY.md measured sigma^2 = 0.2597 and k_eff = 3.62.
+// CAS), E p^2 = 535/27027; data/NOISE_STUDY.md measured sigma^2 = 0.2597 and k_eff = 3.62.
 TEST(TurningBands, BandMomentsHaveTheirClosedForms) {
   // Simpson's rule over the band polynomial built from quintic_fade (the function the noise uses).
   const int intervals = 20000;

@@ -14,7 +14,7 @@ TEST(Lattice, PaperAndUnitCoordinates) {
   const LatticeSpec paper{7, 6, Protocol::paper}, unit{7, 6, Protocol::unit};
   EXPECT_DOUBLE_EQ(paper.coordinate(0), 0.05);
   EXPECT_DOUBLE_EQ(paper.coordinate(5), 0.95);
-  EXPECT_DOUBLE_EQ(paper.spacing(), 0.18);  // PROTOCOL.md: 0.9/5 in 7D
+  EXPECT_DOUBLE_EQ(paper.spacing(), 0.18);  // data/PROTOCOL.md: 0.9/5 in 7D
   EXPECT_DOUBLE_EQ(LatticeSpec({6, 7, Protocol::paper}).spacing(), 0.15);
   EXPECT_DOUBLE_EQ(unit.coordinate(0), 1.0 / 12.0);
   EXPECT_EQ(paper.point_count(), 279936u);

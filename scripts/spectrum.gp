@@ -1,0 +1,29 @@
+# Power spectrum figure: the periodogram (2D: the (k0, k1) plane; 3D: its k2 = 0 slice) on a log colour
+# scale, and the radial average with the flat level 1 of uniform random points. Compiled into dfvn-sample
+# (src/plot/gnuplot.hpp), which runs it as
+#   gnuplot -c spectrum.gp OUT.png PREFIX.csv PREFIX_radial.csv DIM
+# PREFIX.csv: k0,k1[,k2],power with k0 varying fastest; PREFIX_radial.csv: frequency,power,anisotropy_db,...
+dim = int(ARG4)
+power_floor = 1e-3  # the colour scale's floor: a periodogram can be 0 at a frequency
+set datafile separator comma
+set table $plane separator comma
+if (dim == 3) {
+  plot ARG2 skip 1 using 1:2:($4 > power_floor ? $4 : power_floor) with table if (real(strcol(3)) == 0)
+} else {
+  plot ARG2 skip 1 using 1:2:($3 > power_floor ? $3 : power_floor) with table
+}
+unset table
+set terminal pngcairo size 1300, 560 font 'sans,10'
+set output ARG1
+set multiplot layout 1, 2 title sprintf('Power spectrum of %dD points, averaged over the sets', dim)
+set title 'periodogram P(k)'.(dim == 3 ? ' (k2 = 0 slice)' : '').', log colour scale'
+set xlabel 'k0'; set ylabel 'k1'; set size ratio -1
+set logscale cb; set cbrange [0.01:*]; set palette defined (0 'black', 1 '#1f3f9f', 2 '#d62728', 3 'yellow')
+plot $plane using 1:2:3 with image notitle
+unset logscale cb; set size noratio
+set title 'radial average and anisotropy'
+set xlabel '|k|'; set ylabel 'P'; set y2label 'anisotropy (dB)'; set ytics nomirror; set y2tics; set grid
+plot ARG3 skip 1 using 1:2 with lines linewidth 2 linecolor rgb '#1f5fbf' title 'radial mean', \
+     1 with lines dashtype 3 linecolor rgb 'gray40' title 'random = 1', \
+     ARG3 skip 1 using 1:3 axes x1y2 with lines linecolor rgb '#d62728' title 'anisotropy (dB)'
+unset multiplot

@@ -1,0 +1,45 @@
+// Figures drawn by gnuplot. The gnuplot programs are scripts/*.gp, compiled into the library at
+// configure time, so a figure needs neither a shell nor the source tree: gnuplot is started with an
+// argument list (posix_spawn, no shell), the program reads its inputs as ARG1, ARG2, ... (paths of any
+// spelling, `it's` included), and the PNG is written whole or not at all (io/atomic_file.hpp).
+#pragma once
+
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace dfvn {
+
+enum class PlotProgram {
+  figure4,      // scripts/figure4.gp: Table 1's radial distribution functions
+  figure5,      // scripts/figure5.gp: Table 2's image-warping montage
+  integration,  // scripts/integration.gp: integration error against points, one figure per dimension
+  cnj_study,    // scripts/cnj_study.gp: CNJ against jitter
+  spectrum,     // scripts/spectrum.gp: periodogram and radial average
+};
+
+// "figure4.gp", ...; and the program's text as compiled in.
+std::string_view plot_program_name(PlotProgram program);
+std::string_view plot_program_text(PlotProgram program);
+
+// The first executable `gnuplot` in the directories of PATH, or "" if there is none.
+std::string find_gnuplot();
+
+// A figure that was asked for and could not be drawn (gnuplot failed or wrote nothing); the message
+// names the figure and carries gnuplot's own last error line.
+class PlotError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Draws `output` (a PNG) by running `program` with ARG1 = a temporary PNG path and ARG2.. =
+// `arguments` (at most 8: gnuplot 5.4 passes ARG1..ARG9). On success the PNG replaces `output` whole,
+// gnuplot's warnings go to `log`, and the result is true. Without gnuplot, `log` says how to get it and
+// the result is false. Throws PlotError when gnuplot fails, and std::runtime_error when `output`
+// cannot be written.
+bool draw_figure(PlotProgram program, const std::string& output, const std::vector<std::string>& arguments,
+                 const std::function<void(const std::string&)>& log);
+
+}  // namespace dfvn
