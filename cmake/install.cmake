@@ -23,13 +23,14 @@ install(TARGETS dfvn EXPORT dfvnTargets
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-# The public headers: everything in src/ except the three that exist only for the library's own
+# The public headers: everything in src/ except those that exist only for the library's own
 # translation units and pull in private dependencies (OpenMP, nanoflann) or template internals.
 install(DIRECTORY src/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/dfvn
         FILES_MATCHING PATTERN "*.hpp"
         PATTERN "parallel.hpp" EXCLUDE
         PATTERN "kd_tree.hpp" EXCLUDE
-        PATTERN "trace_impl.hpp" EXCLUDE)
+        PATTERN "trace_impl.hpp" EXCLUDE
+        REGEX "sampling/trace_points.hpp" EXCLUDE)
 
 install(EXPORT dfvnTargets NAMESPACE dfvn:: DESTINATION ${DFVN_CMAKE_PACKAGE_DIR})
 configure_package_config_file(cmake/dfvnConfig.cmake.in ${CMAKE_CURRENT_BINARY_DIR}/dfvnConfig.cmake
@@ -46,9 +47,10 @@ string(REGEX REPLACE "/$" "" dfvn_pc_to_prefix "${dfvn_pc_to_prefix}")
 configure_file(cmake/dfvn.pc.in ${CMAKE_CURRENT_BINARY_DIR}/dfvn.pc @ONLY)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/dfvn.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 
-# The gnuplot programs that draw the figures.
-file(GLOB dfvn_plot_programs CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/scripts/plot_*)
-install(PROGRAMS ${dfvn_plot_programs} DESTINATION ${DFVN_DATA_DIR})
+# The gnuplot programs that draw the figures (the binary has them compiled in; installed for users who
+# redraw a figure from its CSV: gnuplot -c figure4.gp ...).
+file(GLOB dfvn_plot_programs CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/scripts/*.gp)
+install(FILES ${dfvn_plot_programs} DESTINATION ${DFVN_DATA_DIR})
 
 # The man page, from `dfvn-sample --help` and `--version`, when help2man is there.
 find_program(DFVN_HELP2MAN help2man)

@@ -8,6 +8,7 @@
 
 #include "core/message_text.hpp"
 #include "noise/noise_domain.hpp"
+#include "sampling/trace_points.hpp"
 
 namespace dfvn {
 
@@ -88,7 +89,7 @@ std::uint64_t cnj_start_count(const LatticeSpec& lattice, CnjDomain domain) {
 
 template <int N>
 CnjResult curl_noise_jitter(const LatticeSpec& lattice, const CnjOptions& options, std::uint64_t seed, int threads,
-                            const ProgressCallback& progress) {
+                            const FractionProgress& progress) {
   options.validate();
   if (lattice.dimension != N) throw std::invalid_argument("lattice dimension does not match");
   CnjResult result;
@@ -129,7 +130,7 @@ CnjResult curl_noise_jitter(const LatticeSpec& lattice, const CnjOptions& option
 }
 
 CnjResult curl_noise_jitter(const LatticeSpec& lattice, const CnjOptions& options, std::uint64_t seed, int threads,
-                            const ProgressCallback& progress) {
+                            const FractionProgress& progress) {
   return dispatch_dimension(lattice.dimension, [&]<int N>() {
     return curl_noise_jitter<N>(lattice, options, seed, threads, progress);
   });

@@ -10,10 +10,10 @@
 #include <string_view>
 #include <vector>
 
+#include "core/progress.hpp"
 #include "integrate/trace.hpp"
 #include "sampling/lattice.hpp"
 #include "sampling/point_set.hpp"
-#include "sampling/trace_points.hpp"
 
 namespace dfvn {
 
@@ -85,10 +85,10 @@ struct CnjResult {
 
 template <int N>
 CnjResult curl_noise_jitter(const LatticeSpec& lattice, const CnjOptions& options, std::uint64_t seed, int threads,
-                            const ProgressCallback& progress = {});
+                            const FractionProgress& progress = {});
 
 // Runtime-dimension entry point (the lattice's dimension).
 CnjResult curl_noise_jitter(const LatticeSpec& lattice, const CnjOptions& options, std::uint64_t seed, int threads,
-                            const ProgressCallback& progress = {});
+                            const FractionProgress& progress = {});
 
 }  // namespace dfvn

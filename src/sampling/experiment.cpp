@@ -225,7 +225,7 @@ static PointSet generate_points(const SampleConfig& config, const MethodPlan& pl
         facts.skipped_updates = r.trace_stats.skipped_updates;
         facts.retraced = r.retraced;
         facts.kept_at_site = r.kept_at_site;
-        result.notes = fmt::format("{} noise, on the sphere, geodesic distances", to_string(config.cnj.noise));
+        result.notes = fmt::format("{} noise; on the sphere; geodesic distances", to_string(config.cnj.noise));
         return std::move(r.points);
       }
       CnjResult r = curl_noise_jitter(lattice, config.cnj, config.seed, config.threads, report);
@@ -236,7 +236,7 @@ static PointSet generate_points(const SampleConfig& config, const MethodPlan& pl
       facts.skipped_updates = r.trace_stats.skipped_updates;
       facts.retraced = r.retraced;
       facts.kept_at_site = r.kept_at_site;
-      result.notes = fmt::format("{} noise, {} domain, {}", to_string(config.cnj.noise), to_string(config.cnj.domain),
+      result.notes = fmt::format("{} noise; {} domain; {}", to_string(config.cnj.noise), to_string(config.cnj.domain),
                                  to_string(config.cnj.domain_mode));
       if (config.cnj.domain == CnjDomain::cube)  // the ball's clipped lattice has no K^N neighbour structure
         result.displacement =
@@ -252,7 +252,7 @@ static PointSet generate_points(const SampleConfig& config, const MethodPlan& pl
     }
     case Method::random:
       if (config.on == Surface::sphere) {
-        result.notes = "on the sphere, geodesic distances";
+        result.notes = "on the sphere; geodesic distances";
         return uniform_points_on_sphere(config.dimension, plan.requested, config.seed, config.threads);
       }
       return uniform_random_points(config.dimension, plan.requested, plan.domain, config.seed, config.threads);

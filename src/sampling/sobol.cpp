@@ -127,14 +127,19 @@ PointSet sobol_points(int dimension, std::uint64_t count, const Box& domain, Scr
     for (int j = 0; j < dimension; ++j) digits[static_cast<std::size_t>(j)] = sequence.digits(static_cast<std::uint32_t>(begin), j);
     for (std::uint64_t i = begin; i < end; ++i) {
       double* x = out.coordinates.data() + i * static_cast<std::uint64_t>(dimension);
-      // random_unit(seed, sobol_scramble, i, j + 1000), its per-point part hashed once per point.
+      // The bits below the 32 digits: 32 random bits per coordinate, two coordinates per hash of
+      // (seed, stream, point, pair). More would not survive: the sum has 53 significant bits.
       const std::uint64_t point_key = hash_combine(scramble_key, i);
+      std::uint64_t below_bits = 0;
       for (int j = 0; j < dimension; ++j) {
         const std::uint32_t d = digits[static_cast<std::size_t>(j)];
         double unit;
         if (scramble == Scramble::owen) {
-          const double below = bits_to_unit(hash_combine(point_key, static_cast<std::uint64_t>(j) + 1000));
-          unit = (static_cast<double>(owen_scramble_with_key(d, keys[static_cast<std::size_t>(j)])) + below) * 0x1.0p-32;
+          if (j % 2 == 0) below_bits = hash_combine(point_key, static_cast<std::uint64_t>(j / 2) + 1000);
+          const auto below = static_cast<std::uint32_t>(j % 2 == 0 ? below_bits : below_bits >> 32);
+          unit = (static_cast<double>(owen_scramble_with_key(d, keys[static_cast<std::size_t>(j)])) +
+                  static_cast<double>(below) * 0x1.0p-32) *
+                 0x1.0p-32;
         } else {
           unit = static_cast<double>(d) * 0x1.0p-32;
         }

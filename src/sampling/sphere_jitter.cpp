@@ -9,6 +9,7 @@
 #include "core/hash.hpp"
 #include "core/message_text.hpp"
 #include "core/parallel.hpp"
+#include "sampling/trace_points.hpp"
 
 namespace dfvn {
 
@@ -49,7 +50,7 @@ PointSet sphere_start_set(int dimension, int grid) {
 
 template <int N>
 static SphereCnjResult sphere_curl_noise_jitter(int grid, const CnjOptions& options, std::uint64_t seed, int threads,
-                                                const ProgressCallback& progress) {
+                                                const FractionProgress& progress) {
   options.validate();
   const double h = sphere_start_spacing(grid);
   SphereCnjResult result;
@@ -77,7 +78,7 @@ static SphereCnjResult sphere_curl_noise_jitter(int grid, const CnjOptions& opti
 }
 
 SphereCnjResult sphere_curl_noise_jitter(int dimension, int grid, const CnjOptions& options, std::uint64_t seed,
-                                         int threads, const ProgressCallback& progress) {
+                                         int threads, const FractionProgress& progress) {
   if (dimension < 3) throw std::invalid_argument(fmt::format("points on the sphere need N >= 3, got {}", dimension));
   return dispatch_dimension(dimension, [&]<int N>() {
     return sphere_curl_noise_jitter<N>(grid, options, seed, threads, progress);

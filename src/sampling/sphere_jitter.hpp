@@ -40,7 +40,7 @@ struct SphereCnjResult {
 // Every start point traced along the field with f_1 = |x|^2 and the N-2 other functions noise; the
 // options' domain settings are not used. Throws std::invalid_argument for N < 3.
 SphereCnjResult sphere_curl_noise_jitter(int dimension, int grid, const CnjOptions& options, std::uint64_t seed,
-                                         int threads, const ProgressCallback& progress = {});
+                                         int threads, const FractionProgress& progress = {});
 
 // `count` points uniform on S^{N-1} (normalised Gaussian vectors, Box-Muller from the counter-based
 // generator): the random reference.

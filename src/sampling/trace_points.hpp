@@ -11,12 +11,11 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "core/progress.hpp"
 #include "integrate/trace.hpp"
 
 namespace dfvn {
 
-// Progress callback: fraction done in [0, 1]; called from one thread only.
-using ProgressCallback = std::function<void(double)>;
 
 // drop: a trace that ends outside the constraint is reported as not accepted.
 // retrace: it is traced again with 2, 4, ..., 2^kMaxRefinements times the steps (an integration step
@@ -37,7 +36,7 @@ struct TracedPoints {
 template <int N, typename Accept>
 TracedPoints trace_points(const DfvnField<N>& field, const TraceOptions& options, const std::vector<double>& starts,
                           double time, const Accept& accept, OnReject on_reject, int threads,
-                          const ProgressCallback& progress) {
+                          const FractionProgress& progress) {
   const auto count = static_cast<std::int64_t>(starts.size() / N);
   std::vector<Tracer<N>> tracers;  // [0]: the configured steps; [k]: 2^k times as many
   for (int k = 0; k <= (on_reject == OnReject::retrace ? kMaxRefinements : 0); ++k) {

@@ -193,7 +193,7 @@ TEST(Experiment, StatsColumnsAreNumbersOrEmpty) {
     return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
   };
   for (const char* name : {"nn_q01", "rms_displacement", "frequency", "field_frequency", "trace_time", "dropped",
-                                  "skipped_updates", "radius", "saturated", "notes"})
+                                  "skipped_updates", "retraced", "kept_at_site", "radius", "saturated", "notes"})
     ASSERT_LT(column(name), header.size()) << name;
   const auto results = run_sampling(c, false);
   const std::vector<std::string> cnj = split_row(stats_csv_row(c, results[0], false));
@@ -203,7 +203,9 @@ TEST(Experiment, StatsColumnsAreNumbersOrEmpty) {
   EXPECT_EQ(cnj[column("frequency")], "0.5");  // as given, in cycles per lattice spacing
   EXPECT_EQ(cnj[column("field_frequency")], format_real(0.5 / c.lattice().spacing()));
   EXPECT_FALSE(cnj[column("dropped")].empty());
-  EXPECT_EQ(cnj[column("notes")], "\"turning-bands noise\"");
+  EXPECT_EQ(cnj[column("notes")], "\"turning-bands noise; cube domain; conformant\"");
+  EXPECT_FALSE(cnj[column("retraced")].empty());
+  EXPECT_FALSE(cnj[column("kept_at_site")].empty());
   EXPECT_EQ(cnj[column("seconds_generate")], "");
   EXPECT_EQ(cnj[column("domain_side")], "1.0");  // a real, even when whole
   EXPECT_FALSE(pds[column("radius")].empty());
