@@ -101,9 +101,12 @@ for n in 2 5 8; do
   "$bin" --dim "$n" --grid 4 --methods jitter,sobol,random --rdf "$work/rdf-far$n.csv" --rdf-max 1e-6 --rdf-bins 3 \
     --quiet --stats "$work/stats-far$n.csv" 2>"$work/err" && ok || bad "tiny RDF range ${n}D: $(cat "$work/err")"
   # At a frequency this low the field is one vector over the lattice: a small step keeps the points in.
-  "$bin" --dim "$n" --grid 4 --methods cnj --frequency 1e-13 --step-scale 1e-6 --quiet --stats "$work/stats-low$n.csv" 2>"$work/err" &&
-    ok || bad "low frequency sample ${n}D: $(cat "$work/err")"
-  "$bin" --dim "$n" --grid 4 --methods cnj --frequency 1e14 --quiet --stats "$work/stats-high$n.csv" 2>"$work/err" &&
+  # The free field (--domain-mode drop): in the conformant field the noise's values grow like
+  # 1/frequency, and Eq. 13's (f~ - G d) grad alpha term then throws boundary points out, so nearly every
+  # point is retraced 6 times and kept at its site (finite, but minutes in 8D under ASan; see the notes).
+  "$bin" --dim "$n" --grid 4 --methods cnj --frequency 1e-13 --step-scale 1e-6 --domain-mode drop --quiet \
+    --stats "$work/stats-low$n.csv" 2>"$work/err" && ok || bad "low frequency sample ${n}D: $(cat "$work/err")"
+  "$bin" --dim "$n" --grid 4 --methods cnj --frequency 1e14 --domain-mode drop --quiet --stats "$work/stats-high$n.csv" 2>"$work/err" &&
     ok || bad "high frequency sample ${n}D: $(cat "$work/err")"
   expect_finite "sample ${n}D" "$work/rdf-far$n.csv" "$work/stats-far$n.csv" "$work/stats-low$n.csv" "$work/stats-high$n.csv"
 done
