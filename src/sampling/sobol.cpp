@@ -1,6 +1,9 @@
 #include "sampling/sobol.hpp"
 
 #include <algorithm>
+#include <cstring>
+#include <array>
+#include <utility>
 #include <bit>
 #include "core/message_text.hpp"
 
@@ -70,7 +73,13 @@ std::uint32_t SobolSequence::digits(std::uint32_t index, int dim) const {
 
 namespace {
 
-std::uint32_t reverse_bits(std::uint32_t x) {
+// U: std::uint32_t or a vector of them. The vector helpers are always inlined, so that they take the
+// instruction set of their caller (fill_block_avx2 or fill_block); GCC's -Wpsabi note about passing
+// 32-byte vectors without AVX concerns calls that, inlined, never happen.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+template <typename U>
+[[gnu::always_inline]] inline U reverse_bits(U x) {
   x = ((x >> 1) & 0x55555555U) | ((x & 0x55555555U) << 1);
   x = ((x >> 2) & 0x33333333U) | ((x & 0x33333333U) << 2);
   x = ((x >> 4) & 0x0F0F0F0FU) | ((x & 0x0F0F0F0FU) << 4);
@@ -83,13 +92,14 @@ std::uint32_t owen_key(std::uint64_t seed, int dim) {
   return static_cast<std::uint32_t>(random_bits(seed, Stream::sobol_scramble, static_cast<std::uint64_t>(dim)) >> 32);
 }
 
-std::uint32_t owen_scramble_with_key(std::uint32_t digits, std::uint32_t key) {
-  // Burley 2020, "Practical Hash-based Owen Scrambling" (JCGT 9(4)): with the digits bit-reversed, a
-  // Laine-Karras permutation (adding the key, then x ^= x * even constant) changes each bit only
-  // according to the bits below it, i.e. each original digit according to the digits above it: a
-  // nested (Owen) scramble keyed by the seed and the dimension, in a handful of operations.
-  std::uint32_t x = reverse_bits(digits);
-  x += key;
+// Burley 2020, "Practical Hash-based Owen Scrambling" (JCGT 9(4)): with the digits bit-reversed, a
+// Laine-Karras permutation (adding the key, then x ^= x * even constant) changes each bit only according
+// to the bits below it, i.e. each original digit according to the digits above it: a nested (Owen)
+// scramble keyed by the seed and the dimension, in a handful of operations. Takes the digits already
+// reversed and returns the scrambled digits in their natural order.
+template <typename U>
+[[gnu::always_inline]] inline U owen_scramble_reversed(U reversed_digits, U key) {
+  U x = reversed_digits + key;
   x ^= x * 0x6c50b47cU;
   x ^= x * 0xb82f1e52U;
   x ^= x * 0xc7afe638U;
@@ -97,59 +107,155 @@ std::uint32_t owen_scramble_with_key(std::uint32_t digits, std::uint32_t key) {
   return reverse_bits(x);
 }
 
+// What every block of points needs. With Owen scrambling the digits are kept bit-reversed all along:
+// reversal commutes with XOR, so the Gray-code walk XORs reversed direction numbers and feeds the
+// Laine-Karras permutation directly; only its result is reversed back.
+struct SobolBlocks {
+  // Row length of `walk`: the dimension rounded up to 8 lanes, so that rows load as whole vectors.
+  static constexpr std::size_t stride(std::size_t dims) { return (dims + 7) / 8 * 8; }
+  const SobolSequence& sequence;
+  std::vector<std::uint32_t> walk;  // row `bit`: direction `bit` of every dimension (reversed for Owen)
+  std::vector<std::uint32_t> keys;  // Owen: one key per dimension
+  std::uint64_t point_stream = 0;   // Owen: hashed with the point index for the bits below the digits
+  bool owen = false;
+  double lo = 0.0, side = 1.0;
+  double* out = nullptr;
+};
+
+// A GCC/Clang vector of `bytes` bytes of T (the attribute cannot be written on a dependent alias).
+template <typename T, std::size_t bytes>
+struct Vector {
+  typedef T type __attribute__((vector_size(bytes)));
+};
+
+// Points [begin, end) of one block: start from digits() of `begin`, then walk the Gray code, one XOR
+// per coordinate. D is the dimension, known at compile time so the loops over coordinates unroll; W
+// is the number of 32-bit lanes of a vector. Digits, keys and the random bits below the digits stay in
+// vectors (writing lanes one by one and reading them back as a vector stalls store forwarding).
+template <std::size_t D, std::size_t W>
+[[gnu::always_inline]] inline void fill_block_with(const SobolBlocks& b, std::uint64_t begin, std::uint64_t end) {
+  using U32 = typename Vector<std::uint32_t, 4 * W>::type;
+  using U64 = typename Vector<std::uint64_t, 4 * W>::type;
+  using F64 = typename Vector<double, 4 * W>::type;
+  constexpr std::size_t kVectors = (D + W - 1) / W;
+  constexpr std::size_t kBelowWords = (D + 2) / 3;  // 64-bit hashes per point, 20 bits per coordinate
+  static_assert(kVectors * W <= SobolBlocks::stride(D));
+  std::array<U32, kVectors> digits{}, keys{};
+  for (std::size_t j = 0; j < D; ++j) {
+    const std::uint32_t d = b.sequence.digits(static_cast<std::uint32_t>(begin), static_cast<int>(j));
+    digits[j / W][j % W] = b.owen ? reverse_bits(d) : d;
+    keys[j / W][j % W] = b.owen ? b.keys[j] : 0;
+  }
+  constexpr std::uint64_t kOneBits = 0x3ff0000000000000;  // the bits of 1.0
+  for (std::uint64_t i = begin; i < end; ++i) {
+    double* x = b.out + i * D;
+    if (b.owen) {
+      // 20 random bits below the 32 digits per coordinate, three coordinates per hash of (seed, stream,
+      // point, word). Digits and random bits make the 52-bit mantissa of a double in [1, 2): building
+      // it from its bits and subtracting 1 is exact and, unlike an integer conversion, vectorises.
+      std::array<std::uint64_t, kBelowWords> words;
+      for (std::size_t w = 0; w < kBelowWords; ++w) words[w] = hash_combine(b.point_stream, i * kBelowWords + w);
+      for (std::size_t v = 0; v < kVectors; ++v) {
+        const U32 high = owen_scramble_reversed(digits[v], keys[v]);
+        const U32 low = [&]<std::size_t... L>(std::index_sequence<L...>) [[gnu::always_inline]] {
+          return U32{(v * W + L < D ? static_cast<std::uint32_t>(words[(v * W + L) / 3] >> (20 * ((v * W + L) % 3))) << 12
+                                    : 0U)...};
+        }(std::make_index_sequence<W>{});
+        // Interleave into 64-bit lanes: the random bits in the low half, the digits in the high half.
+        U64 halves[2];
+        if constexpr (W == 4) {
+          halves[0] = reinterpret_cast<U64>(__builtin_shuffle(low, high, U32{0, 4, 1, 5}));
+          halves[1] = reinterpret_cast<U64>(__builtin_shuffle(low, high, U32{2, 6, 3, 7}));
+        } else {
+          static_assert(W == 8);
+          halves[0] = reinterpret_cast<U64>(__builtin_shuffle(low, high, U32{0, 8, 1, 9, 2, 10, 3, 11}));
+          halves[1] = reinterpret_cast<U64>(__builtin_shuffle(low, high, U32{4, 12, 5, 13, 6, 14, 7, 15}));
+        }
+        for (std::size_t h = 0; h < 2; ++h) {
+          const std::size_t first = v * W + h * W / 2;
+          if (first >= D) break;
+          const F64 unit = reinterpret_cast<F64>((halves[h] >> 12) | kOneBits) - 1.0;
+          const F64 scaled = b.lo + b.side * unit;
+          std::memcpy(x + first, &scaled, std::min(W / 2, D - first) * sizeof(double));
+        }
+      }
+    } else {
+      for (std::size_t j = 0; j < D; ++j) x[j] = b.lo + b.side * (static_cast<double>(digits[j / W][j % W]) * 0x1.0p-32);
+    }
+    if (i + 1 < end) {
+      const std::uint32_t* row = b.walk.data() + static_cast<std::size_t>(std::countr_zero(i + 1)) * SobolBlocks::stride(D);
+      for (std::size_t v = 0; v < kVectors; ++v) {
+        U32 direction;
+        std::memcpy(&direction, row + v * W, sizeof direction);
+        digits[v] ^= direction;
+      }
+    }
+  }
+}
+
+// Two builds of the same code: SSE2 (every x86-64) and AVX2, chosen at run time. Only integer
+// operations and exact floating-point ones (a double from its bits, minus 1; one multiply and one add
+// that AVX2 alone cannot fuse) differ in instructions, so both give the same bits.
+template <std::size_t D>
+void fill_block(const SobolBlocks& b, std::uint64_t begin, std::uint64_t end) {
+  fill_block_with<D, 4>(b, begin, end);
+}
+
+template <std::size_t D>
+[[gnu::target("avx2")]] void fill_block_avx2(const SobolBlocks& b, std::uint64_t begin, std::uint64_t end) {
+  fill_block_with<D, 8>(b, begin, end);
+}
+
+// fill_block<1> ... fill_block<kMaxDimensions>, indexed by dimension - 1.
+constexpr int kMaxDimensions = 15;  // the rows of the direction table; SobolSequence throws above it
+constexpr auto kFillBlock = []<std::size_t... I>(std::index_sequence<I...>) {
+  return std::array{&fill_block<I + 1>...};
+}(std::make_index_sequence<kMaxDimensions>{});
+constexpr auto kFillBlockAvx2 = []<std::size_t... I>(std::index_sequence<I...>) {
+  return std::array{&fill_block_avx2<I + 1>...};
+}(std::make_index_sequence<kMaxDimensions>{});
+
 }  // namespace
 
 std::uint32_t owen_scramble(std::uint32_t digits, std::uint64_t seed, int dim) {
-  return owen_scramble_with_key(digits, owen_key(seed, dim));
+  return owen_scramble_reversed(reverse_bits(digits), owen_key(seed, dim));
 }
 
 PointSet sobol_points(int dimension, std::uint64_t count, const Box& domain, Scramble scramble, std::uint64_t seed,
-                      int threads) {
+                      int threads, SobolSimd simd) {
   if (count > (std::uint64_t{1} << 32)) throw std::invalid_argument("at most 2^32 Sobol points");
   const SobolSequence sequence(dimension);
-  PointSet out{dimension, std::vector<double>(count * static_cast<std::uint64_t>(dimension)), domain};
-  // Each block of consecutive points starts from digits() of its first index and then walks the Gray
-  // code: one XOR per coordinate instead of one per set bit of the index.
+  if (dimension > kMaxDimensions) throw std::logic_error("the Sobol direction table grew: raise kMaxDimensions");
+  const auto dims = static_cast<std::size_t>(dimension);
+  PointSet out{dimension, std::vector<double>(count * dims), domain};
+  SobolBlocks blocks{sequence, {}, {}};
+  blocks.owen = scramble == Scramble::owen;
+  blocks.walk.resize(static_cast<std::size_t>(SobolSequence::kBits) * SobolBlocks::stride(dims));
+  blocks.keys.resize(dims);
+  for (std::size_t j = 0; j < dims; ++j) {
+    blocks.keys[j] = owen_key(seed, static_cast<int>(j));
+    for (int bit = 0; bit < SobolSequence::kBits; ++bit) {
+      const std::uint32_t v = sequence.direction(static_cast<int>(j), bit);
+      blocks.walk[static_cast<std::size_t>(bit) * SobolBlocks::stride(dims) + j] = blocks.owen ? reverse_bits(v) : v;
+    }
+  }
+  blocks.point_stream = stream_key(seed, Stream::sobol_scramble);
+  blocks.lo = domain.lo;
+  blocks.side = domain.side;
+  blocks.out = out.coordinates.data();
+  const bool avx2 = simd == SobolSimd::best && __builtin_cpu_supports("avx2");
+  const auto fill = avx2 ? kFillBlockAvx2[dims - 1] : kFillBlock[dims - 1];
+  // Blocks of consecutive points are independent, so the points do not depend on the thread count.
   constexpr std::uint64_t kBlock = 4096;
-  const std::uint64_t scramble_key = stream_key(seed, Stream::sobol_scramble);
-  const auto blocks = static_cast<std::int64_t>((count + kBlock - 1) / kBlock);
+  const auto block_count = static_cast<std::int64_t>((count + kBlock - 1) / kBlock);
   // Below about 2^16 coordinates (a few hundred microseconds of work) waking a second thread costs more
   // than it saves: 8192 4D points took 0.8 ms on one thread and 8-17 ms on two while the machine was busy.
-  // The points do not depend on this choice (blocks are independent).
   constexpr std::uint64_t kSerialBelow = std::uint64_t{1} << 16;
-  const bool parallel = count * static_cast<std::uint64_t>(dimension) >= kSerialBelow;
+  const bool parallel = count * dims >= kSerialBelow;
 #pragma omp parallel for schedule(static) num_threads(resolve_threads(threads)) if (parallel)
-  for (std::int64_t block = 0; block < blocks; ++block) {
+  for (std::int64_t block = 0; block < block_count; ++block) {
     const std::uint64_t begin = static_cast<std::uint64_t>(block) * kBlock;
-    const std::uint64_t end = std::min(count, begin + kBlock);
-    std::array<std::uint32_t, 64> digits{}, keys{};
-    for (int j = 0; j < dimension; ++j) keys[static_cast<std::size_t>(j)] = owen_key(seed, j);
-    for (int j = 0; j < dimension; ++j) digits[static_cast<std::size_t>(j)] = sequence.digits(static_cast<std::uint32_t>(begin), j);
-    for (std::uint64_t i = begin; i < end; ++i) {
-      double* x = out.coordinates.data() + i * static_cast<std::uint64_t>(dimension);
-      // The bits below the 32 digits: 32 random bits per coordinate, two coordinates per hash of
-      // (seed, stream, point, pair). More would not survive: the sum has 53 significant bits.
-      const std::uint64_t point_key = hash_combine(scramble_key, i);
-      std::uint64_t below_bits = 0;
-      for (int j = 0; j < dimension; ++j) {
-        const std::uint32_t d = digits[static_cast<std::size_t>(j)];
-        double unit;
-        if (scramble == Scramble::owen) {
-          if (j % 2 == 0) below_bits = hash_combine(point_key, static_cast<std::uint64_t>(j / 2) + 1000);
-          const auto below = static_cast<std::uint32_t>(j % 2 == 0 ? below_bits : below_bits >> 32);
-          unit = (static_cast<double>(owen_scramble_with_key(d, keys[static_cast<std::size_t>(j)])) +
-                  static_cast<double>(below) * 0x1.0p-32) *
-                 0x1.0p-32;
-        } else {
-          unit = static_cast<double>(d) * 0x1.0p-32;
-        }
-        x[j] = domain.lo + domain.side * unit;
-      }
-      if (i + 1 < end) {
-        const int bit = std::countr_zero(i + 1);
-        for (int j = 0; j < dimension; ++j) digits[static_cast<std::size_t>(j)] ^= sequence.direction(j, bit);
-      }
-    }
+    fill(blocks, begin, std::min(count, begin + kBlock));
   }
   return out;
 }

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -57,16 +58,44 @@ TEST(Sobol, OwenScramblingKeepsTheNetProperty) {
   }
 }
 
+// 2^15 5D points: enough coordinates (2^16 and more) for sobol_points to use both threads.
 TEST(Sobol, ScramblingDependsOnTheSeedOnlyAndNotOnThreads) {
-  const PointSet a = sobol_points(5, 4096, Box{0.0, 0.7}, Scramble::owen, 9, 1);
-  const PointSet b = sobol_points(5, 4096, Box{0.0, 0.7}, Scramble::owen, 9, 2);
-  const PointSet c = sobol_points(5, 4096, Box{0.0, 0.7}, Scramble::owen, 10, 2);
+  const PointSet a = sobol_points(5, 1 << 15, Box{0.0, 0.7}, Scramble::owen, 9, 1);
+  const PointSet b = sobol_points(5, 1 << 15, Box{0.0, 0.7}, Scramble::owen, 9, 2);
+  const PointSet c = sobol_points(5, 1 << 15, Box{0.0, 0.7}, Scramble::owen, 10, 2);
   EXPECT_EQ(a.coordinates, b.coordinates);
   EXPECT_NE(a.coordinates, c.coordinates);
   for (double x : a.coordinates) {
     EXPECT_GE(x, 0.0);
     EXPECT_LT(x, 0.7);
   }
+}
+
+// The vectorised generator against the scalar definition: the top 32 bits of every scrambled
+// coordinate are owen_scramble() of the point's digits, for every dimension the table has.
+TEST(Sobol, ScrambledDigitsEqualTheScalarOwenScramble) {
+  for (int dim = 1; dim <= 15; ++dim) {
+    const SobolSequence sequence(dim);
+    const std::uint64_t count = 5000;  // more than one block of 4096, and not a power of 2
+    const PointSet p = sobol_points(dim, count, Box{0.0, 1.0}, Scramble::owen, 3, 2);
+    for (std::uint64_t i = 0; i < count; i += 7)
+      for (int j = 0; j < dim; ++j) {
+        const auto top = static_cast<std::uint32_t>(std::ldexp(p.point(i)[j], 32));
+        ASSERT_EQ(top, owen_scramble(sequence.digits(static_cast<std::uint32_t>(i), j), 3, j))
+            << "dimension " << dim << " point " << i << " coordinate " << j;
+      }
+  }
+}
+
+// AVX2 (where this CPU has it) and SSE2 builds of the generator give the same bits, in every dimension,
+// scrambled or not, on a domain other than the unit cube.
+TEST(Sobol, SimdPathsGiveTheSameBits) {
+  for (int dim = 1; dim <= 15; ++dim)
+    for (const Scramble scramble : {Scramble::owen, Scramble::none}) {
+      const PointSet best = sobol_points(dim, 20011, Box{-0.5, 3.0}, scramble, 11, 2, SobolSimd::best);
+      const PointSet sse2 = sobol_points(dim, 20011, Box{-0.5, 3.0}, scramble, 11, 2, SobolSimd::sse2);
+      EXPECT_EQ(best.coordinates, sse2.coordinates) << "dimension " << dim << " " << to_string(scramble);
+    }
 }
 
 }  // namespace
