@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "core/dimension.hpp"
+#include "core/simd.hpp"
 #include "noise/noise_functions.hpp"
 
 namespace dfvn {
@@ -34,7 +35,8 @@ class TurningBandsNoise final : public NoiseFunctions<N> {
   static constexpr int kBandsPerFunction = 2 * N;
   static constexpr int kBands = (N - 1) * kBandsPerFunction;
 
-  explicit TurningBandsNoise(std::uint64_t seed);
+  // `simd`: which build of the band loop runs (core/simd.hpp); every build gives the same bits.
+  explicit TurningBandsNoise(std::uint64_t seed, Simd simd = Simd::best);
 
   NoiseSample<N, N - 1> evaluate(const Vec<N>& x) const override;
   double wavenumber() const override;
@@ -47,6 +49,8 @@ class TurningBandsNoise final : public NoiseFunctions<N> {
   Eigen::Matrix<double, kBands, N> directions_;
   Eigen::Matrix<double, kBands, 1> offsets_;
   std::array<std::uint64_t, kBands> keys_;
+  // Value and slope of every band from the band coordinates (AVX-512 or baseline build of one loop).
+  void (*profiles_)(const double* t, const std::uint64_t* keys, double* value, double* slope);
 };
 
 // Moments of one band, E p^2 and E p'^2, over a uniform position and slopes uniform in [-1, 1].

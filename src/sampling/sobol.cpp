@@ -222,7 +222,7 @@ std::uint32_t owen_scramble(std::uint32_t digits, std::uint64_t seed, int dim) {
 }
 
 PointSet sobol_points(int dimension, std::uint64_t count, const Box& domain, Scramble scramble, std::uint64_t seed,
-                      int threads, SobolSimd simd) {
+                      int threads, Simd simd) {
   if (count > (std::uint64_t{1} << 32)) throw std::invalid_argument("at most 2^32 Sobol points");
   const SobolSequence sequence(dimension);
   if (dimension > kMaxDimensions) throw std::logic_error("the Sobol direction table grew: raise kMaxDimensions");
@@ -243,7 +243,7 @@ PointSet sobol_points(int dimension, std::uint64_t count, const Box& domain, Scr
   blocks.lo = domain.lo;
   blocks.side = domain.side;
   blocks.out = out.coordinates.data();
-  const bool avx2 = simd == SobolSimd::best && __builtin_cpu_supports("avx2");
+  const bool avx2 = simd == Simd::best && __builtin_cpu_supports("avx2");
   const auto fill = avx2 ? kFillBlockAvx2[dims - 1] : kFillBlock[dims - 1];
   // Blocks of consecutive points are independent, so the points do not depend on the thread count.
   constexpr std::uint64_t kBlock = 4096;

@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/simd.hpp"
 #include "sampling/point_set.hpp"
 
 namespace dfvn {
@@ -39,14 +40,11 @@ class SobolSequence {
 // same flips and every (0, m, s)-net stays a net.
 std::uint32_t owen_scramble(std::uint32_t digits, std::uint64_t seed, int dim);
 
-// The instructions sobol_points runs on: `best` picks AVX2 where the CPU has it, else SSE2. Both give
-// the same bits (a test compares them); `sse2` exists so that the test can reach the other path.
-enum class SobolSimd { best, sse2 };
-
 // `count` Sobol points scaled to `domain`. With Scramble::none the coordinates are digits / 2^32
 // exactly; with Scramble::owen the 32 digits are scrambled and the 20 bits below them (down to 2^-52)
-// are hashed uniform bits. Deterministic per seed; independent of the thread count and of `simd`.
+// are hashed uniform bits. Deterministic per seed; independent of the thread count and of `simd` (the
+// scramble runs on AVX2 where the CPU has it).
 PointSet sobol_points(int dimension, std::uint64_t count, const Box& domain, Scramble scramble, std::uint64_t seed,
-                      int threads, SobolSimd simd = SobolSimd::best);
+                      int threads, Simd simd = Simd::best);
 
 }  // namespace dfvn
