@@ -10,6 +10,7 @@
 
 #include "core/hash.hpp"
 #include "core/parallel.hpp"
+#include "core/quantile.hpp"
 #include "core/stopwatch.hpp"
 
 namespace dfvn {
@@ -25,13 +26,6 @@ void DiagnosisOptions::validate() const {
 }
 
 namespace {
-
-// The q-quantile of `values` (nearest rank on the sorted copy).
-double quantile(std::vector<double> values, double q) {
-  const auto k = static_cast<std::size_t>(std::min(q * static_cast<double>(values.size()), static_cast<double>(values.size() - 1)));
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
-  return values[k];
-}
 
 template <int N>
 FieldDiagnosis diagnose(const DiagnosisOptions& options) {

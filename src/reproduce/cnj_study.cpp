@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "core/quantile.hpp"
 #include "core/stopwatch.hpp"
 #include "io/atomic_file.hpp"
 #include "plot/gnuplot.hpp"
@@ -79,13 +80,6 @@ std::vector<unsigned char> interior_mask(const LatticeSpec& lattice) {
     mask[i] = inside;
   }
   return mask;
-}
-
-double quantile_of_sorted(const std::vector<double>& sorted, double q) {
-  const double rank = q * static_cast<double>(sorted.size() - 1);
-  const auto below = static_cast<std::size_t>(rank);
-  const std::size_t above = std::min(below + 1, sorted.size() - 1);
-  return sorted[below] + (rank - static_cast<double>(below)) * (sorted[above] - sorted[below]);
 }
 
 // NN distances of every point, summarised over the counted ones, in spacings.

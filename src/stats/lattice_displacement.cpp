@@ -6,6 +6,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "core/quantile.hpp"
+
 namespace dfvn {
 
 LatticeDisplacementSummary summarize_lattice_displacements(int dimension, int grid, double spacing,
@@ -37,7 +39,7 @@ LatticeDisplacementSummary summarize_lattice_displacements(int dimension, int gr
                                                            [&](double r) { return r < 0.01 * spacing; })) /
                          static_cast<double>(m);
     std::sort(lengths.begin(), lengths.end());
-    s.median = (m % 2 == 1) ? lengths[m / 2] : 0.5 * (lengths[m / 2 - 1] + lengths[m / 2]);
+    s.median = median_of_sorted(lengths);
   }
 
   // Neighbour pairs along each axis: i and i + stride_a while coordinate a of i is below K - 1.

@@ -12,6 +12,7 @@
 
 #include "core/dimension.hpp"
 #include "core/parallel.hpp"
+#include "core/quantile.hpp"
 #include "stats/kd_tree.hpp"
 
 namespace dfvn {
@@ -107,10 +108,8 @@ NearestNeighbourSummary summarize_nearest_neighbours(std::vector<double> distanc
   std::sort(distances.begin(), distances.end());
   const std::size_t n = distances.size();
   s.min = distances.front();
-  s.median = (n % 2 == 1) ? distances[n / 2] : 0.5 * (distances[n / 2 - 1] + distances[n / 2]);
-  const double rank = 0.01 * static_cast<double>(n - 1);
-  const auto below = static_cast<std::size_t>(rank);
-  s.q01 = distances[below] + (rank - static_cast<double>(below)) * (distances[std::min(below + 1, n - 1)] - distances[below]);
+  s.median = median_of_sorted(distances);
+  s.q01 = quantile_of_sorted(distances, 0.01);
   const double density = static_cast<double>(n) / measure;
   s.median_scaled = s.median * std::pow(density, 1.0 / manifold_dimension);
   return s;
