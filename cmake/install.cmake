@@ -30,7 +30,7 @@ install(DIRECTORY src/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/dfvn
         PATTERN "parallel.hpp" EXCLUDE
         PATTERN "kd_tree.hpp" EXCLUDE
         PATTERN "trace_impl.hpp" EXCLUDE
-        REGEX "sampling/trace_points.hpp" EXCLUDE)
+        REGEX "integrate/trace_table.hpp" EXCLUDE)
 
 install(EXPORT dfvnTargets NAMESPACE dfvn:: DESTINATION ${DFVN_CMAKE_PACKAGE_DIR})
 configure_package_config_file(cmake/dfvnConfig.cmake.in ${CMAKE_CURRENT_BINARY_DIR}/dfvnConfig.cmake

@@ -8,7 +8,7 @@
 
 #include "core/message_text.hpp"
 #include "noise/noise_domain.hpp"
-#include "sampling/trace_points.hpp"
+#include "integrate/trace_table.hpp"
 
 namespace dfvn {
 
@@ -103,21 +103,21 @@ CnjResult curl_noise_jitter(const LatticeSpec& lattice, const CnjOptions& option
   const auto count = static_cast<std::int64_t>(sites.size() / N);
   result.started = static_cast<std::uint64_t>(count);
 
-  const TracedPoints traced = trace_points<N>(
-      field, options.trace, sites, result.trace_time, [&](const Vec<N>& x) { return domain.contains(x.data(), N); },
+  std::vector<double> ends(sites.size());
+  const TracedPoints traced = trace_table<N>(
+      field, options.trace, sites.data(), static_cast<std::size_t>(count), ends.data(), result.trace_time, [&](const Vec<N>& x) { return domain.contains(x.data(), N); },
       options.domain_mode == DomainMode::conformant ? OnReject::retrace : OnReject::drop, threads, progress);
   // Compact and sum in index order, so every output is the same for any thread count.
   result.points = PointSet{N, {}, domain};
-  result.points.coordinates.reserve(traced.end.size());
-  result.displacements.resize(traced.end.size());
+  result.points.coordinates.reserve(ends.size());
+  result.displacements.resize(ends.size());
   double total_squared_displacement = 0.0;
   for (std::int64_t i = 0; i < count; ++i) {
     auto u = Eigen::Map<Vec<N>>(result.displacements.data() + i * N);
-    u = Eigen::Map<const Vec<N>>(traced.end.data() + i * N) - Eigen::Map<const Vec<N>>(sites.data() + i * N);
+    u = Eigen::Map<const Vec<N>>(ends.data() + i * N) - Eigen::Map<const Vec<N>>(sites.data() + i * N);
     total_squared_displacement += u.squaredNorm();
     if (traced.accepted[static_cast<std::size_t>(i)])
-      result.points.coordinates.insert(result.points.coordinates.end(), traced.end.begin() + i * N,
-                                       traced.end.begin() + (i + 1) * N);
+      result.points.coordinates.insert(result.points.coordinates.end(), ends.begin() + i * N, ends.begin() + (i + 1) * N);
     else
       ++result.dropped;
   }

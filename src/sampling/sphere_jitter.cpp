@@ -9,7 +9,7 @@
 #include "core/hash.hpp"
 #include "core/message_text.hpp"
 #include "core/parallel.hpp"
-#include "sampling/trace_points.hpp"
+#include "integrate/trace_table.hpp"
 
 namespace dfvn {
 
@@ -58,16 +58,17 @@ static SphereCnjResult sphere_curl_noise_jitter(int grid, const CnjOptions& opti
   result.field_frequency = options.frequency / h;
   const DfvnField<N> field(seed, FieldOptions{options.noise, result.field_frequency, FieldConstraint::on_sphere});
   const PointSet starts = sphere_start_set(N, grid);
-  const TracedPoints traced = trace_points<N>(
-      field, options.trace, starts.coordinates, result.trace_time,
+  std::vector<double> ends(starts.coordinates.size());
+  const TracedPoints traced = trace_table<N>(
+      field, options.trace, starts.coordinates.data(), starts.size(), ends.data(), result.trace_time,
       [](const Vec<N>& x) { return satisfies_constraint<N>(FieldConstraint::on_sphere, x); }, OnReject::retrace,
       threads, progress);
   double total_squared_displacement = 0.0;  // in index order
-  for (std::size_t i = 0; i < traced.end.size(); ++i) {
-    const double u = traced.end[i] - starts.coordinates[i];
+  for (std::size_t i = 0; i < ends.size(); ++i) {
+    const double u = ends[i] - starts.coordinates[i];
     total_squared_displacement += u * u;
   }
-  result.points = PointSet{N, traced.end, starts.domain};
+  result.points = PointSet{N, std::move(ends), starts.domain};
   result.rms_displacement =
       starts.size() ? std::sqrt(total_squared_displacement / static_cast<double>(starts.size())) : 0.0;
   result.retraced = traced.retraced;

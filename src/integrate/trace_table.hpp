@@ -1,6 +1,7 @@
-// Tracing a whole start set along a field, in parallel and independent of the thread count: the loop
-// shared by curl noise jittering in a domain (sampling/curl_noise_jitter.cpp) and on the sphere
-// (sampling/sphere_jitter.cpp).
+// Tracing a table of start points along a field, in parallel and independent of the thread count: the
+// one loop behind trace_points (integrate/trace_points.hpp: the CLI's and Python's), curl noise
+// jittering in a domain (sampling/curl_noise_jitter.cpp) and on the sphere (sampling/sphere_jitter.cpp).
+// Private (not installed): it includes OpenMP.
 #pragma once
 
 #include <algorithm>
@@ -16,7 +17,6 @@
 
 namespace dfvn {
 
-
 // drop: a trace that ends outside the constraint is reported as not accepted.
 // retrace: it is traced again with 2, 4, ..., 2^kMaxRefinements times the steps (an integration step
 // that jumped across the boundary, where reprojection cannot help, is the only way out of a
@@ -25,19 +25,19 @@ enum class OnReject { drop, retrace };
 inline constexpr int kMaxRefinements = 6;
 
 struct TracedPoints {
-  std::vector<double> end;               // count x N, row-major, in start order
   std::vector<unsigned char> accepted;   // per point: the end point satisfies the constraint
   TraceStats stats;                      // over every trace, refinements included
   std::uint64_t retraced = 0;            // points traced again with more steps
   std::uint64_t kept_at_start = 0;       // points no refinement brought to an accepted end
 };
 
-// starts: count x N, row-major. accept(x) says whether an end point satisfies the constraint.
+// starts and end: count x N, row-major; end may be starts (each row is read before it is written).
+// accept(x) says whether an end point satisfies the constraint.
 template <int N, typename Accept>
-TracedPoints trace_points(const DfvnField<N>& field, const TraceOptions& options, const std::vector<double>& starts,
-                          double time, const Accept& accept, OnReject on_reject, int threads,
-                          const FractionProgress& progress) {
-  const auto count = static_cast<std::int64_t>(starts.size() / N);
+TracedPoints trace_table(const DfvnField<N>& field, const TraceOptions& options, const double* starts,
+                         std::size_t rows, double* end, double time, const Accept& accept, OnReject on_reject,
+                         int threads, const FractionProgress& progress) {
+  const auto count = static_cast<std::int64_t>(rows);
   std::vector<Tracer<N>> tracers;  // [0]: the configured steps; [k]: 2^k times as many
   for (int k = 0; k <= (on_reject == OnReject::retrace ? kMaxRefinements : 0); ++k) {
     TraceOptions refined = options;
@@ -45,7 +45,6 @@ TracedPoints trace_points(const DfvnField<N>& field, const TraceOptions& options
     tracers.emplace_back(field, refined);
   }
   TracedPoints out;
-  out.end.resize(starts.size());
   out.accepted.resize(static_cast<std::size_t>(count));
   std::atomic<std::int64_t> done{0};
   std::int64_t retraced = 0, kept = 0;
@@ -55,7 +54,7 @@ TracedPoints trace_points(const DfvnField<N>& field, const TraceOptions& options
     TraceStats local;
 #pragma omp for schedule(dynamic, 1024)
     for (std::int64_t i = 0; i < count; ++i) {
-      const Vec<N> x0 = Eigen::Map<const Vec<N>>(starts.data() + i * N);
+      const Vec<N> x0 = Eigen::Map<const Vec<N>>(starts + i * N);
       Vec<N> x = tracers[0].trace(x0, time, &local);
       bool ok = accept(x);
       if (!ok && on_reject == OnReject::retrace) {
@@ -70,7 +69,7 @@ TracedPoints trace_points(const DfvnField<N>& field, const TraceOptions& options
           ++kept;
         }
       }
-      Eigen::Map<Vec<N>>(out.end.data() + i * N) = x;
+      Eigen::Map<Vec<N>>(end + i * N) = x;
       out.accepted[static_cast<std::size_t>(i)] = ok;
       if (progress && (i + 1) % report_every == 0) {
         const std::int64_t d = done.fetch_add(report_every) + report_every;
