@@ -1,34 +1,7 @@
 #!/usr/bin/env bash
 # Command-line tests: run the real binary ($DFVN_SAMPLE) and check exit codes, messages and files.
 set -u
-bin=${DFVN_SAMPLE:?set DFVN_SAMPLE to the dfvn-sample binary}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0
-failed=0
-
-ok() { passed=$((passed + 1)); }
-bad() { failed=$((failed + 1)); echo "FAIL: $*" >&2; }
-
-# expect_error NAME STDIN ARGS...: non-zero exit, exactly one line on stderr, nothing on stdout.
-expect_error() {
-  local name=$1 input=$2
-  shift 2
-  printf '%b' "$input" | "$bin" "$@" >"$work/out" 2>"$work/err"
-  local rc=$?
-  local lines
-  lines=$(wc -l <"$work/err")
-  if [[ $rc -ne 0 && $lines -eq 1 && ! -s $work/out ]] && grep -q "^dfvn-sample: error: " "$work/err"; then
-    ok
-  else
-    bad "$name: rc=$rc, $lines stderr lines: $(cat "$work/err")"
-  fi
-}
-
-# expect_message NAME PATTERN: the last error message matches PATTERN.
-expect_message() {
-  grep -q -- "$2" "$work/err" && ok || bad "$1: '$(cat "$work/err")' does not match '$2'"
-}
+source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
 # --help and --version
 "$bin" --version >"$work/out" 2>&1 && grep -q "^dfvn-sample [0-9]" "$work/out" && ok || bad "--version"
@@ -41,23 +14,23 @@ head -1 "$work/f.csv" | grep -qx "x0,x1,x2,c0,c1,c2,f1,f2" && ok || bad "field h
 sed -n 2p "$work/f.csv" | cut -d, -f1 | grep -qx "0.10000000000000001" && ok || bad "17 significant digits"
 
 # field: bad input names the line and the problem
-expect_error "wrong column count" "1,2,3\n0.5,0.5\n" field --dim 3
+expect_error "wrong column count" "1,2,3\n0.5,0.5\n" "" field --dim 3
 expect_message "wrong column count" "line 2: expected 3 comma-separated columns"
-expect_error "non-numeric" "1,2,3\n1,zz,3\n" field --dim 3
+expect_error "non-numeric" "1,2,3\n1,zz,3\n" "" field --dim 3
 expect_message "non-numeric" "line 2, column 2: 'zz' is not a number"
-expect_error "nan" "1,2,nan\n" field --dim 3
+expect_error "nan" "1,2,nan\n" "" field --dim 3
 expect_message "nan" "line 1, column 3: 'nan' is not a finite number"
-expect_error "inf" "1,2,3\n4,inf,6\n" field --dim 3
+expect_error "inf" "1,2,3\n4,inf,6\n" "" field --dim 3
 expect_message "inf" "line 2, column 2"
-expect_error "dim too large" "" field --dim 9
+expect_error "dim too large" "" "" field --dim 9
 expect_message "dim too large" "dim"
-expect_error "dim too small" "" field --dim 1
-expect_error "negative frequency" "" field --dim 3 --frequency -2
-expect_message "negative frequency" "must be a number in \[2^-50, 2^50\]"
-expect_error "nan frequency" "" field --dim 3 --frequency nan
-expect_error "missing input file" "" field --dim 3 --input "$work/does-not-exist.csv"
-expect_error "unknown option" "" field --dim 3 --bogus
-expect_error "unwritable output" "0,0,0\n" field --dim 3 --output "$work/no/such/dir/out.csv"
+expect_error "dim too small" "" "" field --dim 1
+expect_error "negative frequency" "" "" field --dim 3 --frequency -2
+expect_message "negative frequency" "must be a number in \[2\^-50, 2\^50\]"
+expect_error "nan frequency" "" "" field --dim 3 --frequency nan
+expect_error "missing input file" "" "" field --dim 3 --input "$work/does-not-exist.csv"
+expect_error "unknown option" "" "" field --dim 3 --bogus
+expect_error "unwritable output" "0,0,0\n" "" field --dim 3 --output "$work/no/such/dir/out.csv"
 
 # No partial output file when the input is bad.
 printf '1,2,3\n4,5\n' | "$bin" field --dim 3 --output "$work/partial.csv" 2>/dev/null
@@ -81,26 +54,26 @@ awk -F, '$3 == "cnj" || $3 == "jitter" { if ($10 == "" || $14 == "") exit 1 } $3
 # field --diagnose: one CSV row, and --noise is checked
 "$bin" field --diagnose --dim 4 --noise turning-bands --diagnose-points 2000 >"$work/d.csv" 2>"$work/err" &&
   [[ $(wc -l <"$work/d.csv") -eq 2 ]] && head -1 "$work/d.csv" | grep -q "^dim,noise,frequency" && ok || bad "field --diagnose: $(cat "$work/err")"
-expect_error "unknown noise basis" "" field --dim 3 --noise perlin9
+expect_error "unknown noise basis" "" "" field --dim 3 --noise perlin9
 "$bin" reproduce table1 --help 2>&1 | grep -q -- "--noise" && "$bin" sample --help 2>&1 | grep -q -- "--noise" && ok ||
   bad "--noise on reproduce table1 and sample"
 [[ $(wc -l <"$work/s.csv") -eq 5 ]] && ok || bad "stats rows (cnj, jitter, pds, sobol)"
 "$bin" sample --help >"$work/out" 2>&1 && grep -q -- "--step-scale" "$work/out" && grep -q -- "--protocol" "$work/out" && ok || bad "sample --help"
-expect_error "sample dim" "" --dim 9 --grid 4
-expect_error "sample grid" "" --dim 3 --grid 1
+expect_error "sample dim" "" "" --dim 9 --grid 4
+expect_error "sample grid" "" "" --dim 3 --grid 1
 expect_message "sample grid" "grid"
-expect_error "sample memory" "" --dim 8 --grid 40 --max-memory 1
-expect_message "sample memory" "PiB of memory (limit 1.00 GiB).*--max-memory"
-expect_error "sample method" "" --dim 3 --grid 4 --methods cnj,bogus
+expect_error "sample memory" "" "" --dim 8 --grid 40 --max-memory 1
+expect_message "sample memory" "PiB of memory \(limit 1.00 GiB\).*--max-memory"
+expect_error "sample method" "" "" --dim 3 --grid 4 --methods cnj,bogus
 expect_message "sample method" "unknown method 'bogus'"
-expect_error "sample duplicate method" "" --dim 3 --grid 4 --methods cnj,cnj
-expect_error "sample step scale" "" --dim 3 --grid 4 --step-scale 0
-expect_error "sample step scale nan" "" --dim 3 --grid 4 --step-scale nan
-expect_error "sample frequency" "" --dim 3 --grid 4 --frequency -1
-expect_error "sample reproject" "" --dim 3 --grid 4 --reproject bogus
-expect_error "sample protocol" "" --dim 3 --grid 4 --protocol bogus
-expect_error "sample pds radius" "" --dim 3 --grid 4 --pds-radius -0.1
-expect_error "sample stats path" "" --dim 3 --grid 4 --stats "$work/no/such/dir/stats.csv"
+expect_error "sample duplicate method" "" "" --dim 3 --grid 4 --methods cnj,cnj
+expect_error "sample step scale" "" "" --dim 3 --grid 4 --step-scale 0
+expect_error "sample step scale nan" "" "" --dim 3 --grid 4 --step-scale nan
+expect_error "sample frequency" "" "" --dim 3 --grid 4 --frequency -1
+expect_error "sample reproject" "" "" --dim 3 --grid 4 --reproject bogus
+expect_error "sample protocol" "" "" --dim 3 --grid 4 --protocol bogus
+expect_error "sample pds radius" "" "" --dim 3 --grid 4 --pds-radius -0.1
+expect_error "sample stats path" "" "" --dim 3 --grid 4 --stats "$work/no/such/dir/stats.csv"
 [[ ! -e $work/no ]] && ok || bad "directory created for a bad --stats path"
 
 # Points: CSV and NPY, same bytes on 1 and 2 threads.
@@ -134,29 +107,29 @@ awk -F, '$1 == 3 && $2 == 8 && $3 == "cnj" && $24 == "0" && /ball domain; confor
   ok || bad "ball: $(tail -1 "$work/ball.csv")"
 "$bin" --dim 4 --grid 6 --on sphere --quiet --stats "$work/sphere.csv" && ok || bad "sphere run"
 [[ $(grep -c "on the sphere; geodesic distances" "$work/sphere.csv") -eq 2 ]] && ok || bad "sphere: cnj and random rows: $(cat "$work/sphere.csv")"
-expect_error "sample domain" "" --dim 3 --grid 4 --domain torus
-expect_error "sample domain mode" "" --dim 3 --grid 4 --domain-mode keep
-expect_error "sphere in 2D" "" --dim 2 --grid 4 --on sphere
+expect_error "sample domain" "" "" --dim 3 --grid 4 --domain torus
+expect_error "sample domain mode" "" "" --dim 3 --grid 4 --domain-mode keep
+expect_error "sphere in 2D" "" "" --dim 2 --grid 4 --on sphere
 expect_message "sphere in 2D" "needs --dim 3..8"
-expect_error "sphere methods" "" --dim 3 --grid 4 --on sphere --methods cnj,pds
+expect_error "sphere methods" "" "" --dim 3 --grid 4 --on sphere --methods cnj,pds
 # A huge lattice is refused at once, not counted site by site.
-expect_error "ball memory" "" --dim 8 --grid 100 --domain ball --max-memory 1
-expect_error "sphere memory" "" --dim 8 --grid 100 --on sphere --max-memory 1
-expect_error "ball rdf" "" --dim 3 --grid 4 --domain ball --rdf "$work/ballrdf.csv"
+expect_error "ball memory" "" "" --dim 8 --grid 100 --domain ball --max-memory 1
+expect_error "sphere memory" "" "" --dim 8 --grid 100 --on sphere --max-memory 1
+expect_error "ball rdf" "" "" --dim 3 --grid 4 --domain ball --rdf "$work/ballrdf.csv"
 
 # RDF output
 "$bin" --dim 3 --grid 6 --methods jitter,random --rdf "$work/rdf.csv" --rdf-bins 10 --quiet >/dev/null && ok || bad "rdf run"
 head -1 "$work/rdf.csv" | grep -qx "dim,method,r,g" && [[ $(wc -l <"$work/rdf.csv") -eq 21 ]] && ok || bad "rdf csv shape"
 
 # reproduce
-expect_error "reproduce dims" "" reproduce table1 --dims 2-9 --out "$work/r1"
+expect_error "reproduce dims" "" "" reproduce table1 --dims 2-9 --out "$work/r1"
 expect_message "reproduce dims" "Table 1 covers dimensions 3..7"
-expect_error "reproduce dims text" "" reproduce table1 --dims x --out "$work/r1"
-expect_error "reproduce width" "" reproduce table2 --width 1 --out "$work/r2"
-expect_error "reproduce which" "" reproduce table3
-expect_error "reproduce setting" "" reproduce table2 --setting paper --out "$work/r2"
-expect_error "reproduce samples" "" reproduce table2 --samples 3 --out "$work/r2"
-expect_error "reproduce second width" "" reproduce table2 --width 32 --height 18 --second-width 3 --out "$work/r2"
+expect_error "reproduce dims text" "" "" reproduce table1 --dims x --out "$work/r1"
+expect_error "reproduce width" "" "" reproduce table2 --width 1 --out "$work/r2"
+expect_error "reproduce which" "" "" reproduce table3
+expect_error "reproduce setting" "" "" reproduce table2 --setting paper --out "$work/r2"
+expect_error "reproduce samples" "" "" reproduce table2 --samples 3 --out "$work/r2"
+expect_error "reproduce second width" "" "" reproduce table2 --width 32 --height 18 --second-width 3 --out "$work/r2"
 expect_message "reproduce second width" "second resolution is too small"
 "$bin" reproduce table2 --width 32 --height 18 --second-width 16 --out "$work/r2" --quiet >"$work/t2.md" 2>"$work/err" && ok || bad "reproduce table2: $(cat "$work/err")"
 for f in table2.csv table2.md timeline.csv source.png reference.png rk4-64-newton1.png euler-512.png time-0.5.png; do
@@ -166,5 +139,4 @@ grep -q "paper Euler RMSE" "$work/t2.md" && ok || bad "table2.md on stdout"
 grep -q "Setting \`shader\`" "$work/r2/table2.md" && ok || bad "table2 default is the shader's setting"
 echo "0.1,0.2" | "$bin" field --dim 2 --noise quintic-gradient >"$work/qg.csv" 2>"$work/err" && ok || bad "field --noise quintic-gradient: $(cat "$work/err")"
 
-echo "cli: $passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+finish "cli"

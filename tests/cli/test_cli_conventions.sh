@@ -3,28 +3,8 @@
 # usage without arguments, help and version, short options, -n, field's input layouts, points on
 # standard output and as dat, --no-stats, --no-timing, --json, --progress.
 set -u
-bin=${DFVN_SAMPLE:?set DFVN_SAMPLE to the dfvn-sample binary}
+source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 python=/usr/bin/python3
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0
-failed=0
-
-ok() { passed=$((passed + 1)); }
-bad() { failed=$((failed + 1)); echo "FAIL: $*" >&2; }
-
-# expect_error NAME PATTERN ARGS...: non-zero exit, one line on stderr matching PATTERN, nothing on stdout.
-expect_error() {
-  local name=$1 pattern=$2
-  shift 2
-  "$bin" "$@" </dev/null >"$work/out" 2>"$work/err"
-  local rc=$?
-  if [[ $rc -ne 0 && $(wc -l <"$work/err") -eq 1 && ! -s $work/out ]] && grep -q "^dfvn-sample: error: .*$pattern" "$work/err"; then
-    ok
-  else
-    bad "$name: rc=$rc, stderr: $(cat "$work/err")"
-  fi
-}
 
 # No arguments: a short usage on stdout and exit 0, at once (not the 40-second main job).
 start=$(date +%s)
@@ -46,14 +26,14 @@ done
 "$bin" --version | grep -q "^dfvn-sample [0-9]" && ok || bad "--version"
 
 # Refused combinations.
-expect_error "format without points" "--format npy applies to --points" -d 2 --grid 4 --format npy
-expect_error "rdf and stats on stdout" "--rdf - would both write to standard output" -d 2 --grid 4 --rdf -
-expect_error "json and stats on stdout" "--json - would both write" -d 2 --grid 4 --json -
-expect_error "points - with two methods" "one point set to standard output" -d 2 --grid 4 --methods jitter,sobol --points - -o "$work/x.csv"
-expect_error "points - and stats on stdout" "--points - would both write" -d 2 --grid 4 --methods sobol --points -
-expect_error "no-stats without points" "give --points" -d 2 --grid 4 --no-stats
-expect_error "-n and --grid" "excludes" -d 2 --grid 4 -n 100
-expect_error "-n too small" "count" -d 2 -n 1
+expect_error "format without points" "" "--format npy applies to --points" -d 2 --grid 4 --format npy
+expect_error "rdf and stats on stdout" "" "--rdf - would both write to standard output" -d 2 --grid 4 --rdf -
+expect_error "json and stats on stdout" "" "--json - would both write" -d 2 --grid 4 --json -
+expect_error "points - with two methods" "" "one point set to standard output" -d 2 --grid 4 --methods jitter,sobol --points - -o "$work/x.csv"
+expect_error "points - and stats on stdout" "" "--points - would both write" -d 2 --grid 4 --methods sobol --points -
+expect_error "no-stats without points" "" "give --points" -d 2 --grid 4 --no-stats
+expect_error "-n and --grid" "" "excludes" -d 2 --grid 4 -n 100
+expect_error "-n too small" "" "count" -d 2 -n 1
 [[ ! -e $work/x.csv ]] && ok || bad "a refused run left a file"
 
 # Short options, same run as the long ones.
@@ -138,7 +118,7 @@ for s, r in zip(run["sets"], rows):
     assert abs(s["nearest_neighbour"]["q01"] - float(r["nn_q01"])) <= 1e-8 and "seconds" not in s
 assert r["seconds_stats"] == "" and run["summary"]["nearest_neighbour.min"]["sd"] >= 0
 PY
-expect_error "stats json and csv on stdout" "standard output" stats --input "$work/two.dat" --json -
+expect_error "stats json and csv on stdout" "" "standard output" stats --input "$work/two.dat" --json -
 
 # Points: to standard output with one method, and the dat format (what numpy.loadtxt, UTK and pspec read).
 "$bin" -d 3 --grid 4 -q --methods sobol --no-stats --points - >"$work/p.csv" 2>"$work/err" &&
@@ -178,7 +158,6 @@ grep -q $'\r' "$work/plog" && bad "carriage return in a log" || ok
 "$bin" -d 3 --grid 6 --methods jitter --progress always -q -o /dev/null 2>"$work/plog3" && [[ ! -s $work/plog3 ]] && ok || bad "-q"
 "$bin" stats --input "$work/p.dat" --domain-side 0.4 --discrepancy --progress always -o /dev/null 2>"$work/plog4" &&
   grep -q "\[5/5\] L2-star" "$work/plog4" && ok || bad "stats progress: $(cat "$work/plog4")"
-expect_error "progress mode" "progress" -d 2 --grid 4 --progress sometimes
+expect_error "progress mode" "" "progress" -d 2 --grid 4 --progress sometimes
 
-echo "cli_conventions: $passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+finish "cli_conventions"

@@ -3,14 +3,8 @@
 # drawn without a shell into folders of any name, a figure gnuplot cannot draw fails the command, a
 # missing gnuplot only says how to get it, the terminal gets plain text, table1 has mean +- sd cells.
 set -u
-bin=${DFVN_SAMPLE:?set DFVN_SAMPLE to the dfvn-sample binary}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0
-failed=0
+source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
-ok() { passed=$((passed + 1)); }
-bad() { failed=$((failed + 1)); echo "FAIL: $*" >&2; }
 is_png() { [[ -s $1 && $(head -c 8 "$1" | od -An -tx1 | tr -d ' \n') == 89504e470d0a1a0a ]]; }
 
 command -v gnuplot >/dev/null || { echo "test_cli_figures: gnuplot is not installed (scripts/setup installs it)" >&2; exit 1; }
@@ -69,5 +63,4 @@ rc=$?
 [[ $rc -eq 0 && -s $work/n2/table2.md && ! -e $work/n2/figure5.png ]] && grep -q "figure5.png.*gnuplot is not installed.*apt-get install gnuplot-nox" "$work/err" \
   && ok || bad "no gnuplot: rc=$rc, stderr: $(cat "$work/err")"
 
-echo "cli_figures: $passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+finish "cli_figures"

@@ -3,37 +3,7 @@
 # NaN/Inf, output safety (signals, devices, links, FIFOs, two outputs on one path), values that must
 # be refused, and messages (one line, the tool's own, echoes shortened and escaped).
 set -u
-bin=${DFVN_SAMPLE:?set DFVN_SAMPLE to the dfvn-sample binary}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0
-failed=0
-
-ok() { passed=$((passed + 1)); }
-bad() { failed=$((failed + 1)); echo "FAIL: $*" >&2; }
-
-# expect_error NAME STDIN ARGS...: non-zero exit, exactly one line on stderr starting with the tool's
-# prefix, at most 400 bytes, no control bytes, nothing on stdout.
-expect_error() {
-  local name=$1 input=$2
-  shift 2
-  printf '%b' "$input" | "$bin" "$@" >"$work/out" 2>"$work/err"
-  local rc=$?
-  local lines bytes
-  lines=$(wc -l <"$work/err")
-  bytes=$(wc -c <"$work/err")
-  if [[ $rc -ne 0 && $lines -eq 1 && $bytes -le 400 && ! -s $work/out ]] && grep -q "^dfvn-sample: error: " "$work/err" &&
-    ! LC_ALL=C grep -q '[[:cntrl:]]' <(tr -d '\n' <"$work/err"); then
-    ok
-  else
-    bad "$name: rc=$rc, $lines stderr lines, $bytes bytes: $(head -c 300 "$work/err" | cat -v)"
-  fi
-}
-
-# expect_message NAME PATTERN: the last error message matches PATTERN (grep -E).
-expect_message() {
-  grep -Eq -- "$2" "$work/err" && ok || bad "$1: '$(head -c 300 "$work/err" | cat -v)' does not match '$2'"
-}
+source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
 # expect_finite NAME FILE...: the files exist and hold no NaN or Inf.
 expect_finite() {
@@ -61,31 +31,31 @@ expect_no_temporaries() {
 # Crashes and NaN/Inf: coordinates and frequencies outside the noise domain are refused, naming them.
 for n in 2 3 4 5 6 7 8; do
   row=$(printf '1e308%.0s,' $(seq 1 "$n"))
-  expect_error "huge coordinates ${n}D" "${row%,}\n" field --dim "$n"
+  expect_error "huge coordinates ${n}D" "${row%,}\n" "" field --dim "$n"
   expect_message "huge coordinates ${n}D" "line 1|point 1"
   expect_message "huge coordinates ${n}D" "1e\+308.*outside the noise domain"
 done
-expect_error "coordinate just outside the domain" "0,1125899906842624\n" field --dim 2
+expect_error "coordinate just outside the domain" "0,1125899906842624\n" "" field --dim 2
 expect_message "coordinate just outside the domain" "column 2: 1125899906842624 is outside the noise domain"
-expect_error "field frequency 1e308" "0.1,0.2\n" field --dim 2 --frequency 1e308
+expect_error "field frequency 1e308" "0.1,0.2\n" "" field --dim 2 --frequency 1e308
 expect_message "field frequency 1e308" "--frequency.*1e308"
-expect_error "field subnormal frequency" "0.1,0.2\n" field --dim 2 --frequency 1e-320
+expect_error "field subnormal frequency" "0.1,0.2\n" "" field --dim 2 --frequency 1e-320
 expect_message "field subnormal frequency" "--frequency.*2\^-50"
-expect_error "cnj frequency 1e307" "" --dim 3 --grid 4 --methods cnj --frequency 1e307
-expect_error "cnj subnormal frequency" "" --dim 3 --grid 4 --methods cnj --frequency 1e-320
-expect_error "cnj field frequency over the bound" "" --dim 3 --grid 4 --methods cnj --frequency 1e15
+expect_error "cnj frequency 1e307" "" "" --dim 3 --grid 4 --methods cnj --frequency 1e307
+expect_error "cnj subnormal frequency" "" "" --dim 3 --grid 4 --methods cnj --frequency 1e-320
+expect_error "cnj field frequency over the bound" "" "" --dim 3 --grid 4 --methods cnj --frequency 1e15
 expect_message "cnj field frequency over the bound" "field frequency"
-expect_error "table2 frequency 1e308" "" reproduce table2 --frequency 1e308 --out "$work/t2bad"
-expect_error "table2 frequency over the image height" "" reproduce table2 --frequency 1e15 --width 2 --height 20000 --out "$work/t2bad"
-expect_error "step scale 1e300" "" --dim 3 --grid 4 --methods cnj --step-scale 1e300
-expect_error "rdf-max 1e-300" "" --dim 3 --grid 4 --methods jitter --rdf "$work/rdf-bad.csv" --rdf-max 1e-300
+expect_error "table2 frequency 1e308" "" "" reproduce table2 --frequency 1e308 --out "$work/t2bad"
+expect_error "table2 frequency over the image height" "" "" reproduce table2 --frequency 1e15 --width 2 --height 20000 --out "$work/t2bad"
+expect_error "step scale 1e300" "" "" --dim 3 --grid 4 --methods cnj --step-scale 1e300
+expect_error "rdf-max 1e-300" "" "" --dim 3 --grid 4 --methods jitter --rdf "$work/rdf-bad.csv" --rdf-max 1e-300
 expect_message "rdf-max 1e-300" "--rdf-max"
 [[ ! -e $work/t2bad && ! -e $work/rdf-bad.csv ]] && ok || bad "an output was written for refused input"
 for t in 100000 1000000 2147483647 99999999999999999999 -1 '' 1.5; do
-  expect_error "threads '$t'" "" --dim 3 --grid 4 --methods jitter --threads "$t"
+  expect_error "threads '$t'" "" "" --dim 3 --grid 4 --methods jitter --threads "$t"
   expect_message "threads '$t'" "--threads: must be 0 \(all cores\) or 1\.\.[0-9]+ "
 done
-expect_error "threads in field" "0,0\n" field --dim 2 --threads 100000
+expect_error "threads in field" "0,0\n" "" field --dim 2 --threads 100000
 OMP_NUM_THREADS=100000 "$bin" --dim 2 --grid 5 --methods jitter --quiet >"$work/omp.csv" 2>"$work/err" && ok ||
   bad "OMP_NUM_THREADS=100000: $(cat "$work/err")"
 
@@ -116,9 +86,9 @@ done
 "$bin" --dim 5 --grid 4 --methods cnj --step-scale 3 --domain-mode drop --quiet --stats "$work/stats-step.csv" 2>"$work/err" &&
   ok || bad "large step scale 5D: $(cat "$work/err")"
 expect_finite "large step scale 5D" "$work/stats-step.csv"
-expect_error "every CNJ point dropped" "" --dim 2 --grid 4 --methods cnj --step-scale 1048576 --domain-mode drop
+expect_error "every CNJ point dropped" "" "" --dim 2 --grid 4 --methods cnj --step-scale 1048576 --domain-mode drop
 expect_message "every CNJ point dropped" "the cnj point set has [01] point"
-expect_error "every CNJ point dropped 5D" "" --dim 5 --grid 4 --methods cnj --step-scale 1048576 --domain-mode drop
+expect_error "every CNJ point dropped 5D" "" "" --dim 5 --grid 4 --methods cnj --step-scale 1048576 --domain-mode drop
 expect_message "every CNJ point dropped 5D" "the cnj point set has [01] point"
 for n in 2 5; do
   "$bin" --dim $n --grid 3 --methods cnj --step-scale 1048576 --quiet --stats "$work/stats-huge$n.csv" 2>"$work/err" &&
@@ -203,18 +173,18 @@ wait "$reader"
 [[ $(wc -l <stdout.csv) -eq 2 ]] && ok || bad "/dev/stdout into a file: $(wc -l <stdout.csv) lines"
 lines=$("$bin" --dim 3 --grid 4 --methods jitter --quiet --stats /dev/fd/1 2>"$work/err" | wc -l)
 [[ $lines -eq 2 ]] && ok || bad "/dev/fd/1 into a pipe: $lines lines, $(cat "$work/err")"
-expect_error "directory as --stats" "" --dim 3 --grid 4 --methods jitter --stats "$work/targets"
+expect_error "directory as --stats" "" "" --dim 3 --grid 4 --methods jitter --stats "$work/targets"
 expect_message "directory as --stats" "directory"
 expect_no_temporaries "after the output tests" "$work/targets"
 
 # Two outputs of one run on one path are refused, whatever the spelling.
-expect_error "same --rdf and --stats" "" --dim 3 --grid 4 --methods jitter --rdf x.csv --stats x.csv
+expect_error "same --rdf and --stats" "" "" --dim 3 --grid 4 --methods jitter --rdf x.csv --stats x.csv
 expect_message "same --rdf and --stats" "--stats and --rdf"
-expect_error "same path spelled twice" "" --dim 3 --grid 4 --methods jitter --rdf ./x.csv --stats "$work/targets/x.csv"
-expect_error "--stats through a link to --rdf" "" --dim 3 --grid 4 --methods jitter --rdf target.csv --stats link2.csv
+expect_error "same path spelled twice" "" "" --dim 3 --grid 4 --methods jitter --rdf ./x.csv --stats "$work/targets/x.csv"
+expect_error "--stats through a link to --rdf" "" "" --dim 3 --grid 4 --methods jitter --rdf target.csv --stats link2.csv
 ln target.csv hard.csv
-expect_error "--stats a hard link of --rdf" "" --dim 3 --grid 4 --methods jitter --rdf target.csv --stats hard.csv
-expect_error "--stats inside --points" "" --dim 3 --grid 4 --methods jitter,cnj --points pts --stats pts/cnj.csv
+expect_error "--stats a hard link of --rdf" "" "" --dim 3 --grid 4 --methods jitter --rdf target.csv --stats hard.csv
+expect_error "--stats inside --points" "" "" --dim 3 --grid 4 --methods jitter,cnj --points pts --stats pts/cnj.csv
 expect_message "--stats inside --points" "--points \(cnj.csv\)"
 [[ ! -e x.csv && ! -e pts ]] && ok || bad "refused outputs were created"
 cd "$work" || exit 1
@@ -222,65 +192,64 @@ cd "$work" || exit 1
 # ---------------------------------------------------------------------------------------------------
 # Values that must be refused, not wrapped or guessed.
 for seed in -1 18446744073709551616 '' 0x10 1e3; do
-  expect_error "seed '$seed'" "" --dim 3 --grid 4 --methods jitter --seed "$seed"
+  expect_error "seed '$seed'" "" "" --dim 3 --grid 4 --methods jitter --seed "$seed"
   expect_message "seed '$seed'" "--seed: must be an integer in 0\.\.18446744073709551615"
 done
-expect_error "seed in field" "0,0\n" field --dim 2 --seed -1
-expect_error "seed in table1" "" reproduce table1 --seed -1 --out "$work/r1bad"
+expect_error "seed in field" "0,0\n" "" field --dim 2 --seed -1
+expect_error "seed in table1" "" "" reproduce table1 --seed -1 --out "$work/r1bad"
 "$bin" --dim 3 --grid 4 --methods jitter --seed 18446744073709551615 --quiet >/dev/null && ok || bad "seed 2^64 - 1 refused"
-expect_error "rdf-queries -1" "" --dim 3 --grid 4 --methods jitter --rdf "$work/q.csv" --rdf-queries -1
-expect_error "CSV +-1" "+-1,2\n" field --dim 2
+expect_error "rdf-queries -1" "" "" --dim 3 --grid 4 --methods jitter --rdf "$work/q.csv" --rdf-queries -1
+expect_error "CSV +-1" "+-1,2\n" "" field --dim 2
 expect_message "CSV +-1" "line 1, column 1: '\+-1' is not a number"
-expect_error "CSV --1" "1,--1\n" field --dim 2
+expect_error "CSV --1" "1,--1\n" "" field --dim 2
 printf '+1,2\n' | "$bin" field --dim 2 >"$work/plus.csv" && [[ $(wc -l <"$work/plus.csv") -eq 2 ]] && ok || bad "+1 not read"
 printf '"0.1","0.2","0.3"\n"0.4", "0.5" ,0.6\n' | "$bin" field --dim 3 >"$work/quoted.csv" 2>"$work/err" && ok ||
   bad "quoted numbers: $(cat "$work/err")"
 [[ $(wc -l <"$work/quoted.csv") -eq 3 ]] && sed -n 2p "$work/quoted.csv" | grep -q "^0.10000000000000001,0.20000000000000001," && ok ||
   bad "quoted numbers were not read as the first data line: $(head -2 "$work/quoted.csv")"
 printf '"x0","x1"\n1,2\n' | "$bin" field --dim 2 >"$work/qh.csv" && [[ $(wc -l <"$work/qh.csv") -eq 2 ]] && ok || bad "quoted header"
-expect_error "header after data" "1,2\nx0,x1\n" field --dim 2
+expect_error "header after data" "1,2\nx0,x1\n" "" field --dim 2
 expect_message "header after data" "line 2, column 1: 'x0' is not a number"
-expect_error "half-numeric header" "x0,1\n2,3\n" field --dim 2
-expect_error "unterminated quote" '"1,2\n' field --dim 2
+expect_error "half-numeric header" "x0,1\n2,3\n" "" field --dim 2
+expect_error "unterminated quote" '"1,2\n' "" field --dim 2
 expect_message "unterminated quote" "line 1, column 1: unterminated quote"
 
 # ---------------------------------------------------------------------------------------------------
 # Messages: one clear line, the tool's own.
-expect_error "threads -1 range" "" --threads -1
+expect_error "threads -1 range" "" "" --threads -1
 expect_message "threads -1 range" "1\.\.[0-9]+ \(4 x the [0-9]+ cores, at most 1024\), got '-1'"
-expect_error "memory units" "" --dim 3 --grid 40 --methods jitter --max-memory 0.001
+expect_error "memory units" "" "" --dim 3 --grid 40 --methods jitter --max-memory 0.001
 expect_message "memory units" "about [0-9.]+ MiB of memory \(limit 1\.02 MiB\)"
 if [[ ${DFVN_SANITIZED:-0} == 1 ]]; then
   echo "SKIP: allocation failure (AddressSanitizer aborts on an impossible allocation instead of throwing)"
 else
-  expect_error "allocation failure" "" --dim 8 --grid 100 --methods jitter --max-memory 1e300
+  expect_error "allocation failure" "" "" --dim 8 --grid 100 --methods jitter --max-memory 1e300
   expect_message "allocation failure" "out of memory for the jitter point set: 10000000000000000 points in 8D need about [0-9.]+ EiB"
 fi
-expect_error "dims overflow" "" reproduce table1 --dims 99999999999 --out "$work/r1bad"
+expect_error "dims overflow" "" "" reproduce table1 --dims 99999999999 --out "$work/r1bad"
 expect_message "dims overflow" "--dims: '99999999999' is not a dimension in 3\.\.7"
-expect_error "unknown reproduce subcommand" "" reproduce table3
+expect_error "unknown reproduce subcommand" "" "" reproduce table3
 expect_message "unknown reproduce subcommand" "table1 or table2 or cnj-study or integration, got 'table3'"
-expect_error "missing reproduce subcommand" "" reproduce
+expect_error "missing reproduce subcommand" "" "" reproduce
 expect_message "missing reproduce subcommand" "table1 or table2"
-expect_error "unknown options in order" "" --dim 3 --bogus1 --bogus2 third
+expect_error "unknown options in order" "" "" --dim 3 --bogus1 --bogus2 third
 expect_message "unknown options in order" "'--bogus1' '--bogus2' 'third'"
 python3 -c "print('1,' + 'a' * 1000000)" >"$work/megabyte.csv"
-expect_error "1 MB field" "" field --dim 2 --input "$work/megabyte.csv"
+expect_error "1 MB field" "" "" field --dim 2 --input "$work/megabyte.csv"
 expect_message "1 MB field" "'a{40}\.\.\.' \(1000000 bytes\)"
-expect_error "escape bytes" "1,\033[31mred\n" field --dim 2
+expect_error "escape bytes" "1,\033[31mred\n" "" field --dim 2
 expect_message "escape bytes" "'\\\\x1B\[31mred'"
-expect_error "NUL byte" "1,2\0z\n" field --dim 2
+expect_error "NUL byte" "1,2\0z\n" "" field --dim 2
 expect_message "NUL byte" "'2\\\\0z'"
-expect_error "byte order mark" "1,2\n\xef\xbb\xbf3,4\n" field --dim 2
+expect_error "byte order mark" "1,2\n\xef\xbb\xbf3,4\n" "" field --dim 2
 expect_message "byte order mark" "'\\\\xEF\\\\xBB\\\\xBF3'"
 printf '\xef\xbb\xbfx0,x1\n1,2\n' | "$bin" field --dim 2 >"$work/bom.csv" && [[ $(wc -l <"$work/bom.csv") -eq 2 ]] && ok ||
   bad "byte order mark at the start of the file"
-expect_error "escape bytes in an option" "" --dim 3 --protocol "$(printf 'x\033[2Jy')"
+expect_error "escape bytes in an option" "" "" --dim 3 --protocol "$(printf 'x\033[2Jy')"
 expect_message "escape bytes in an option" "'x\\\\x1B\[2Jy'"
-expect_error "long option value" "" --dim 3 --methods "$(printf 'b%.0s' $(seq 1 5000))"
+expect_error "long option value" "" "" --dim 3 --methods "$(printf 'b%.0s' $(seq 1 5000))"
 expect_message "long option value" "'b{40}\.\.\.' \(5000 bytes\)"
 "$bin" --help-all >"$work/help-all" 2>&1 && grep -q -- "--frequency" "$work/help-all" && grep -q "table2" "$work/help-all" &&
   grep -q -- "--rdf-max" "$work/help-all" && ok || bad "--help-all: $(head -3 "$work/help-all")"
 
-echo "cli hardening: $passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+finish "cli hardening"

@@ -2,28 +2,7 @@
 # Command-line tests of `dfvn-sample stats --input` and `--realizations`: run the real binary
 # ($DFVN_SAMPLE) on each input format and on bad files.
 set -u
-bin=${DFVN_SAMPLE:?set DFVN_SAMPLE to the dfvn-sample binary}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0
-failed=0
-
-ok() { passed=$((passed + 1)); }
-bad() { failed=$((failed + 1)); echo "FAIL: $*" >&2; }
-
-# expect_error NAME PATTERN ARGS...: non-zero exit, exactly one line on stderr matching PATTERN,
-# nothing on stdout and no output file.
-expect_error() {
-  local name=$1 pattern=$2
-  shift 2
-  "$bin" "$@" >"$work/out" 2>"$work/err"
-  local rc=$?
-  if [[ $rc -ne 0 && $(wc -l <"$work/err") -eq 1 && ! -s $work/out ]] && grep -q "^dfvn-sample: error: .*$pattern" "$work/err"; then
-    ok
-  else
-    bad "$name: rc=$rc, stderr: $(cat "$work/err")"
-  fi
-}
+source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
 # The sampling stats' nearest-neighbour and displacement columns (issue 11), the displacement ones empty.
 header="input,set,dim,points,nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,median_displacement,frac_unmoved,neighbour_disorder,lattice_order,seconds_stats,domain_side,cd,wd,md,l2_star"
@@ -57,36 +36,36 @@ cmp -s "$work/t1" "$work/t2" && ok || bad "stats depend on --threads"
 
 # Bad files: one line naming the line, dtype or shape; no output file.
 printf '0.1,0.2\n0.3\n' >"$work/ragged.csv"
-expect_error "ragged csv" "ragged.csv, line 2: expected 2 comma-separated columns" stats --input "$work/ragged.csv" --output "$work/o.csv"
+expect_error "ragged csv" "" "ragged.csv, line 2: expected 2 comma-separated columns" stats --input "$work/ragged.csv" --output "$work/o.csv"
 [[ ! -e $work/o.csv ]] && ok || bad "partial output after a bad file"
 printf '0.1 0.2\n0.3 zz\n' >"$work/text.dat"
-expect_error "text in dat" "line 2, column 2: 'zz' is not a number" stats --input "$work/text.dat"
+expect_error "text in dat" "" "line 2, column 2: 'zz' is not a number" stats --input "$work/text.dat"
 printf '1,2,3,4,5,6,7,8,9\n' >"$work/wide.csv"
-expect_error "9 columns" "9 coordinates per point; allowed 1..8" stats --input "$work/wide.csv"
+expect_error "9 columns" "" "9 coordinates per point; allowed 1..8" stats --input "$work/wide.csv"
 printf '\x93NUMPY\x01\x00\x76\x00{'"'"'descr'"'"': '"'"'<i8'"'"', '"'"'fortran_order'"'"': False, '"'"'shape'"'"': (1, 2), }' >"$work/int.npy"
 printf '%*s\n' $((118 - 59)) '' >>"$work/int.npy"
 printf '\x01\x00\x00\x00\x00\x00\x00\x00\x02\x00\x00\x00\x00\x00\x00\x00' >>"$work/int.npy"
-expect_error "int npy" "dtype '<i8' is not supported" stats --input "$work/int.npy"
-expect_error "outside the domain" "outside the domain \[0, 0.5\]^2; give the side with --domain-side" stats --input "$work/two.dat" --domain-side 0.5
-expect_error "unknown format" "--format: xyz not in" stats --input "$work/two.dat" --format xyz
+expect_error "int npy" "" "dtype '<i8' is not supported" stats --input "$work/int.npy"
+expect_error "outside the domain" "" "outside the domain \[0, 0.5\]\^2; give the side with --domain-side" stats --input "$work/two.dat" --domain-side 0.5
+expect_error "unknown format" "" "--format: xyz not in" stats --input "$work/two.dat" --format xyz
 cp "$work/two.dat" "$work/two.bin"
-expect_error "no format" "give --format" stats --input "$work/two.bin"
-expect_error "missing file" "" stats --input "$work/none.csv"
-expect_error "no input" "input" stats
+expect_error "no format" "" "give --format" stats --input "$work/two.bin"
+expect_error "missing file" "" "" stats --input "$work/none.csv"
+expect_error "no input" "" "input" stats
 
 # sample --realizations: R rows per method, then its mean and sd.
 "$bin" --dim 3 --grid 4 --methods jitter,sobol --realizations 3 --seed 5 --quiet >"$work/r.csv" 2>"$work/err" && ok || bad "realizations: $(cat "$work/err")"
 seed_column=$(head -1 "$work/r.csv" | tr ',' '\n' | grep -nx seed | cut -d: -f1)
 [[ $(cut -d, -f3,"$seed_column" "$work/r.csv" | tail -n +2 | tr '\n' ' ') == "jitter,5 sobol,5 jitter,6 sobol,6 jitter,7 sobol,7 jitter,mean jitter,sd sobol,mean sobol,sd " ]] \
   && ok || bad "realization rows: $(cut -d, -f3,"$seed_column" "$work/r.csv" | tr '\n' ' ')"
-expect_error "realizations and points" "one realization" --dim 3 --grid 4 --realizations 2 --points "$work/rp"
+expect_error "realizations and points" "" "one realization" --dim 3 --grid 4 --realizations 2 --points "$work/rp"
 
 # stats --spectrum: 2D sets (the file's sets are averaged); not for 4D.
 "$bin" --dim 2 --grid 16 --methods jitter --protocol unit --points "$work/s2" --quiet >/dev/null || bad "sample 2D"
 "$bin" stats --input "$work/s2/jitter.csv" --spectrum "$work/spec" --spectrum-frequency 20 >/dev/null 2>"$work/err" && ok || bad "spectrum: $(cat "$work/err")"
 [[ $(wc -l <"$work/spec.csv") -eq $((41 * 41 + 1)) && $(wc -l <"$work/spec_radial.csv") -eq 21 ]] && ok || bad "spectrum files"
 "$bin" --dim 4 --grid 3 --methods jitter --protocol unit --points "$work/s4" --quiet >/dev/null || bad "sample 4D"
-expect_error "spectrum 4D" "needs 2D or 3D points" stats --input "$work/s4/jitter.csv" --spectrum "$work/spec4"
+expect_error "spectrum 4D" "" "needs 2D or 3D points" stats --input "$work/s4/jitter.csv" --spectrum "$work/spec4"
 
 # reproduce integration, small: every file and a reading.
 "$bin" reproduce integration --dims 3 --realizations 2 --max-points 512 --methods cnj,jitter,random --out "$work/int" --quiet \
@@ -94,8 +73,7 @@ expect_error "spectrum 4D" "needs 2D or 3D points" stats --input "$work/s4/jitte
 for f in integration.csv integration_slopes.csv integration.md; do [[ -s $work/int/$f ]] && ok || bad "integration wrote no $f"; done
 [[ $(tail -n +2 "$work/int/integration.csv" | wc -l) -eq $((6 * 3 * $(cut -d, -f4 "$work/int/integration.csv" | tail -n +2 | sort -u | wc -l))) ]] && ok || bad "integration rows"
 grep -q "CNJ against the jittering" "$work/int.md" && ok || bad "integration reading"
-expect_error "integration dims" "Table 1 covers dimensions 3..7" reproduce integration --dims 9 --out "$work/int2"
-expect_error "integration realizations" "realizations" reproduce integration --realizations 1 --out "$work/int2"
+expect_error "integration dims" "" "Table 1 covers dimensions 3..7" reproduce integration --dims 9 --out "$work/int2"
+expect_error "integration realizations" "" "realizations" reproduce integration --realizations 1 --out "$work/int2"
 
-echo "cli_stats: $passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+finish "cli_stats"
