@@ -879,7 +879,7 @@ constexpr const char* kUsage =
     "\n"
     "The main job: CNJ, jittered lattice, Poisson disk and Sobol point sets and one CSV row of\n"
     "nearest-neighbour statistics per method (any options run it, as does 'dfvn-sample sample ...'):\n"
-    "  dfvn-sample --dim 7 --grid 6              the paper's 7D sets (about 40 s on 2 cores)\n"
+    "  dfvn-sample --dim 7 --grid 6              the paper's 7D sets (about a minute on 2 cores)\n"
     "  dfvn-sample -d 3 -n 4096 -o stats.csv     3D, 4096 points per set\n"
     "\n"
     "Subcommands:\n"

@@ -6,7 +6,7 @@ set -u
 source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 python=/usr/bin/python3
 
-# No arguments: a short usage on stdout and exit 0, at once (not the 40-second main job).
+# No arguments: a short usage on stdout and exit 0, at once (not the minute-long main job).
 start=$(date +%s)
 "$bin" </dev/null >"$work/usage" 2>"$work/err"
 rc=$?
@@ -60,7 +60,7 @@ rows = {r["method"]: r for r in csv.DictReader(open(sys.argv[1]))}
 cnj, pds = rows["cnj"], rows["pds"]
 assert cnj["frequency"] == "0.5", cnj["frequency"]
 assert abs(float(cnj["field_frequency"]) - 0.5 / (0.9 / 5)) < 1e-6, cnj["field_frequency"]
-assert cnj["notes"] == "turning-bands noise", cnj["notes"]
+assert cnj["notes"] == "turning-bands noise; cube domain; conformant", cnj["notes"]
 assert cnj["dropped"].isdigit() and cnj["skipped_updates"].isdigit() and float(cnj["trace_time"]) > 0
 assert pds["frequency"] == "" and pds["dropped"] == "" and pds["saturated"] in ("0", "1") and pds["radius"] == "0.1"
 assert pds["rms_displacement"] == "" and cnj["rms_displacement"] != ""
