@@ -755,9 +755,9 @@ struct StatsCommand {
         ->capture_default_str()
         ->check(CLI::Range(1, 512));
     progress.add_to(*cmd);
-    cmd->add_option("--threads", common.threads, "Worker threads; 0 = all cores (output never depends on it)")
+    cmd->add_option("--threads", common.threads, "Worker threads: 0 = all cores, at most 4 x the cores (output never depends on it)")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(kThreadCount);
     cmd->callback([this] { run(); });
   }
 

@@ -56,6 +56,8 @@ for t in 100000 1000000 2147483647 99999999999999999999 -1 '' 1.5; do
   expect_message "threads '$t'" "--threads: must be 0 \(all cores\) or 1\.\.[0-9]+ "
 done
 expect_error "threads in field" "0,0\n" "" field --dim 2 --threads 100000
+printf 'x,y\n0.1,0.2\n0.6,0.7\n' >"$work/two.csv"
+expect_error "threads in stats" "" "--threads: must be 0 \(all cores\) or 1\.\.[0-9]+ " stats --input "$work/two.csv" --threads 100000
 OMP_NUM_THREADS=100000 "$bin" --dim 2 --grid 5 --methods jitter --quiet >"$work/omp.csv" 2>"$work/err" && ok ||
   bad "OMP_NUM_THREADS=100000: $(cat "$work/err")"
 
