@@ -132,13 +132,17 @@ struct CommonOptions {
   int threads = 0;
 };
 
+void add_threads_option(CLI::App& app, int& threads) {
+  app.add_option("--threads", threads, "Worker threads: 0 = all cores, at most 4 x the cores (output never depends on it)")
+      ->capture_default_str()
+      ->check(kThreadCount);
+}
+
 void add_common_options(CLI::App& app, CommonOptions& common) {
   app.add_option("-s,--seed", common.seed, "Seed of every random choice; same seed, same output")
       ->capture_default_str()
       ->check(kUnsignedInteger);
-  app.add_option("--threads", common.threads, "Worker threads: 0 = all cores, at most 4 x the cores (output never depends on it)")
-      ->capture_default_str()
-      ->check(kThreadCount);
+  add_threads_option(app, common.threads);
 }
 
 // Progress on stderr: --progress and -q/--quiet, shared by the subcommands that run long.
@@ -755,9 +759,7 @@ struct StatsCommand {
         ->capture_default_str()
         ->check(CLI::Range(1, 512));
     progress.add_to(*cmd);
-    cmd->add_option("--threads", common.threads, "Worker threads: 0 = all cores, at most 4 x the cores (output never depends on it)")
-        ->capture_default_str()
-        ->check(kThreadCount);
+    add_threads_option(*cmd, common.threads);
     cmd->callback([this] { run(); });
   }
 

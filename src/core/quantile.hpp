@@ -1,5 +1,6 @@
-// Order statistics of samples, as NumPy computes them by default: one definition for the statistics
-// (nearest-neighbour q01 and median, displacement medians), the field diagnostics and the CNJ study.
+// Order statistics of samples, as NumPy computes them by default (to within an ulp: the same
+// interpolation, written in one order): one definition for the statistics (nearest-neighbour q01 and
+// median, displacement medians), the field diagnostics and the CNJ study.
 #pragma once
 
 #include <algorithm>
@@ -11,9 +12,10 @@ namespace dfvn {
 
 // numpy.quantile(values, q) with its default 'linear' method: the value at rank q (n - 1) of the
 // sorted values, interpolated between the two order statistics around it. `sorted` is non-empty and
-// ascending; 0 <= q <= 1.
+// ascending; q outside [0, 1] (or NaN) is refused, as it would index past the values.
 inline double quantile_of_sorted(const std::vector<double>& sorted, double q) {
   if (sorted.empty()) throw std::invalid_argument("the quantile of no values");
+  if (!(q >= 0.0 && q <= 1.0)) throw std::invalid_argument("a quantile's q must be in [0, 1]");
   const double rank = q * static_cast<double>(sorted.size() - 1);
   const auto below = static_cast<std::size_t>(rank);
   const std::size_t above = std::min(below + 1, sorted.size() - 1);
@@ -27,10 +29,5 @@ inline double median_of_sorted(const std::vector<double>& sorted) {
   return n % 2 == 1 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
 }
 
-// quantile_of_sorted of unsorted values (sorts the copy it takes).
-inline double quantile(std::vector<double> values, double q) {
-  std::sort(values.begin(), values.end());
-  return quantile_of_sorted(values, q);
-}
 
 }  // namespace dfvn

@@ -71,11 +71,12 @@ FieldDiagnosis diagnose(const DiagnosisOptions& options) {
   }
   d.rms_speed = std::sqrt(speed2 / static_cast<double>(count));
   const double rms = d.rms_speed > 0.0 ? d.rms_speed : 1.0;
-  d.median_over_rms = quantile(speed, 0.5) / rms;
-  d.q10_over_rms = quantile(speed, 0.1) / rms;
   d.fraction_below_1_percent =
       static_cast<double>(std::count_if(speed.begin(), speed.end(), [&](double s) { return s < 0.01 * rms; })) /
       static_cast<double>(count);
+  std::sort(speed.begin(), speed.end());
+  d.median_over_rms = median_of_sorted(speed) / rms;
+  d.q10_over_rms = quantile_of_sorted(speed, 0.1) / rms;
   std::vector<double> defined;
   defined.reserve(divergence.size());
   for (double v : divergence) {
@@ -83,9 +84,10 @@ FieldDiagnosis diagnose(const DiagnosisOptions& options) {
     else ++d.still_points;
   }
   if (!defined.empty()) {
-    d.divergence_median = quantile(defined, 0.5);
-    d.divergence_p95 = quantile(defined, 0.95);
-    d.divergence_max = *std::max_element(defined.begin(), defined.end());
+    std::sort(defined.begin(), defined.end());
+    d.divergence_median = median_of_sorted(defined);
+    d.divergence_p95 = quantile_of_sorted(defined, 0.95);
+    d.divergence_max = defined.back();
   }
   d.wavenumber_measured = sum_value2 > 0.0 ? std::sqrt(sum_gradient2 / sum_value2) : 0.0;
   d.wavenumber_expected = 2.0 * std::numbers::pi * options.field.frequency;

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
-#include <functional>
 #include <omp.h>
 #include <vector>
 
@@ -49,10 +48,13 @@ TracedPoints trace_table(const DfvnField<N>& field, const TraceOptions& options,
   std::atomic<std::int64_t> done{0};
   std::int64_t retraced = 0, kept = 0;
   const std::int64_t report_every = std::max<std::int64_t>(count / 100, 1024);
+  // Chunks of up to 1024 points, smaller for small tables (a few hundred points traced with many steps
+  // still use every thread). Which thread traces a point never changes its result.
+  const auto chunk = static_cast<int>(std::clamp<std::int64_t>(count / 64, 1, 1024));
 #pragma omp parallel num_threads(resolve_threads(threads)) reduction(+ : retraced, kept)
   {
     TraceStats local;
-#pragma omp for schedule(dynamic, 1024)
+#pragma omp for schedule(dynamic, chunk)
     for (std::int64_t i = 0; i < count; ++i) {
       const Vec<N> x0 = Eigen::Map<const Vec<N>>(starts + i * N);
       Vec<N> x = tracers[0].trace(x0, time, &local);

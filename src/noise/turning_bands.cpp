@@ -42,10 +42,26 @@ void band_profiles_baseline(const double* t, const std::uint64_t* keys, double* 
   band_profiles<kCount>(t, keys, value, slope);
 }
 
+using BandProfiles = void (*)(const double* t, const std::uint64_t* keys, double* value, double* slope);
+
+#if defined(__x86_64__)
 template <int kCount>
 [[gnu::target("avx512f,avx512dq,avx512vl")]] void band_profiles_avx512(const double* t, const std::uint64_t* keys,
                                                                        double* value, double* slope) {
   band_profiles<kCount>(t, keys, value, slope);
+}
+#endif
+
+// The AVX-512 build where asked for and the CPU has every extension it is compiled for, else the baseline.
+template <int kCount>
+BandProfiles choose_band_profiles(Simd simd) {
+#if defined(__x86_64__)
+  if (simd == Simd::best && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+      __builtin_cpu_supports("avx512vl"))
+    return &band_profiles_avx512<kCount>;
+#endif
+  (void)simd;
+  return &band_profiles_baseline<kCount>;
 }
 
 // Lanes of the turning-bands stream: per band (index = band) the key and the offset; per frame
@@ -66,9 +82,7 @@ BandMoments quintic_band_moments() {
 
 template <int N>
 TurningBandsNoise<N>::TurningBandsNoise(std::uint64_t seed, Simd simd)
-    : profiles_(simd == Simd::best && __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl")
-                    ? &band_profiles_avx512<kBands>
-                    : &band_profiles_baseline<kBands>) {
+    : profiles_(choose_band_profiles<kBands>(simd)) {
   for (int i = 0; i < N - 1; ++i)
     for (int frame = 0; frame < 2; ++frame) {
       const auto q = random_frame<N>(seed, Stream::turning_bands, kFrameIndexBase + 2 * static_cast<std::uint64_t>(i) + frame, kFrameLane);

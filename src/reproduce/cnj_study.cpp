@@ -223,6 +223,21 @@ CnjStudyResult run_cnj_study(const CnjStudyConfig& config, const StageProgress& 
 namespace {
 
 // Means over seeds of one (dimension, basis, frequency, step scale) cell.
+// Per-seed differences CNJ - jitter of one packing comparison: their mean and its standard error.
+struct PairedDifference {
+  double sum = 0.0, sum2 = 0.0;
+  int runs = 0;
+  void add(double d) { sum += d, sum2 += d * d, ++runs; }
+  double mean() const { return runs ? sum / runs : 0.0; }
+  double standard_error() const {
+    if (runs < 2) return 0.0;
+    const double variance = std::max(0.0, (sum2 - sum * sum / runs) / (runs - 1));
+    return std::sqrt(variance / runs);
+  }
+  // Two seeds or more and the mean within two standard errors of 0: the comparison cannot tell them apart.
+  bool tie() const { return runs >= 2 && std::abs(mean()) <= 2.0 * standard_error(); }
+};
+
 struct CellMean {
   int dimension = 0;
   NoiseBasis basis{};
@@ -231,6 +246,7 @@ struct CellMean {
   double rms = 0.0, median_over_rms = 0.0, unmoved = 0.0, disorder = 0.0, order = 0.0, skipped = 0.0, dropped = 0.0;
   double q01 = 0.0, min = 0.0;
   double q01_vs_rms = 0.0, min_vs_rms = 0.0, q01_vs_disorder = 0.0, q01_vs_order = 0.0;  // ratios CNJ / jitter
+  PairedDifference q01_rms_difference, min_rms_difference, q01_disorder_difference, q01_order_difference;
 };
 
 std::vector<CellMean> cell_means(const CnjStudyResult& result) {
@@ -259,6 +275,10 @@ std::vector<CellMean> cell_means(const CnjStudyResult& result) {
     jitter.min_rms += r.jitter_rms.nn_min;
     jitter.q01_disorder += r.jitter_disorder.nn_q01;
     jitter.q01_order += r.jitter_order.nn_q01;
+    c.q01_rms_difference.add(r.cnj.nn_q01 - r.jitter_rms.nn_q01);
+    c.min_rms_difference.add(r.cnj.nn_min - r.jitter_rms.nn_min);
+    c.q01_disorder_difference.add(r.cnj.nn_q01 - r.jitter_disorder.nn_q01);
+    c.q01_order_difference.add(r.cnj.nn_q01 - r.jitter_order.nn_q01);
   }
   std::vector<CellMean> out;
   for (auto& [key, cell] : cells) {
@@ -285,8 +305,16 @@ const CellMean* find_cell(const std::vector<CellMean>& cells, int dimension, Noi
 bool moves_points(const CellMean& c) { return c.unmoved <= 0.01 && c.median_over_rms >= 0.5; }
 bool beats_jitter_at_equal_rms(const CellMean& c) { return c.q01_vs_rms > 1.0 && c.min_vs_rms > 1.0; }
 
-std::string verdict(double ratio) {
+// A ratio of seed means, and who wins; a tie when the per-seed differences do not tell CNJ and jitter apart.
+std::string verdict(double ratio, const PairedDifference& difference) {
+  if (difference.tie())
+    return fmt::format("x{:.2f} (tie: CNJ - jitter {:+.3f} ± {:.3f} s.e.)", ratio, difference.mean(),
+                       difference.standard_error());
   return ratio > 1.0 ? fmt::format("**x{:.2f}** (CNJ wins)", ratio) : fmt::format("x{:.2f} (jitter wins)", ratio);
+}
+
+const char* beats_word(double ratio, const PairedDifference& difference) {
+  return difference.tie() ? "ties with" : ratio > 1.0 ? "beats" : "does not beat";
 }
 
 }  // namespace
@@ -326,7 +354,8 @@ std::string cnj_study_markdown(const CnjStudyResult& result) {
       "same lattice and seed, whose half-width h matches CNJ's RMS displacement (h = rms sqrt(3/N)), neighbour "
       "disorder (RMS relative displacement of lattice neighbours; h = disorder / sqrt(2N/3)) or lattice order "
       "(surviving Bragg amplitude; (sin 2 pi h / 2 pi h)^2 = order). Ratios are CNJ / jitter of seed means; "
-      "above 1, CNJ packs better. {:.0f} s on this machine ({} thread(s) requested, 0 = all cores).\n\n",
+      "above 1, CNJ packs better, unless the per-seed differences CNJ - jitter have a mean within two standard "
+      "errors of 0 (a tie, with that mean and standard error in spacings). {:.0f} s on this machine ({} thread(s) requested, 0 = all cores).\n\n",
       paper ? "the paper's Table 1 lattice (linspace(0.05, 0.95, K) per axis)" : "a cell-centred K^N lattice in [0,1]^N",
       cfg.seeds, cfg.seed, cfg.seed + static_cast<std::uint64_t>(cfg.seeds) - 1,
       paper ? "over every point that stays in [0,1]^N (points that leave are dropped, for CNJ and jitter alike, as the "
@@ -355,8 +384,8 @@ std::string cnj_study_markdown(const CnjStudyResult& result) {
       continue;
     }
     md += fmt::format("| {} | {:.3f} | {:.2f} | {:.2f}% | {:.1f}% | {} | {} | {} | {} |\n", n, c->rms, c->median_over_rms,
-                      100.0 * c->unmoved, 100.0 * c->dropped, verdict(c->q01_vs_rms), verdict(c->min_vs_rms), verdict(c->q01_vs_disorder),
-                      verdict(c->q01_vs_order));
+                      100.0 * c->unmoved, 100.0 * c->dropped, verdict(c->q01_vs_rms, c->q01_rms_difference), verdict(c->min_vs_rms, c->min_rms_difference),
+                      verdict(c->q01_vs_disorder, c->q01_disorder_difference), verdict(c->q01_vs_order, c->q01_order_difference));
   }
   md += "\nThe best any studied cell of each basis does (largest ratio; its frequency / step scale in brackets):\n\n";
   md += "| n | basis | best q01 at equal RMS | best q01 at equal disorder | best q01 at equal order |\n"
@@ -382,15 +411,15 @@ std::string cnj_study_markdown(const CnjStudyResult& result) {
   for (int n : cfg.dimensions) {
     const CellMean* c = find_cell(cells, n, defaults.noise, defaults.frequency, defaults.step_scale);
     if (!c) continue;
-    const char* rms_word = c->q01_vs_rms > 1.0 ? "beats" : "does not beat";
-    const char* disorder_word = c->q01_vs_disorder > 1.0 ? "beats" : "does not beat";
-    const char* order_word = c->q01_vs_order > 1.0 ? "beats" : "does not beat";
+    const char* rms_word = beats_word(c->q01_vs_rms, c->q01_rms_difference);
+    const char* disorder_word = beats_word(c->q01_vs_disorder, c->q01_disorder_difference);
+    const char* order_word = beats_word(c->q01_vs_order, c->q01_order_difference);
     md += fmt::format(
-        "- **{}D**: with the defaults, CNJ {} jitter at equal RMS displacement (q01 x{:.2f}, min x{:.2f}), {} it at "
+        "- **{}D**: with the defaults, CNJ {} jitter at equal RMS displacement (q01 x{:.2f}, min x{:.2f}{}), {} it at "
         "equal neighbour disorder (x{:.2f}) and {} it at equal lattice order (x{:.2f}); it moves every point "
         "({:.2f}% under 1% of a spacing, median/RMS {:.2f}) but keeps {:.0f}% of the lattice's Bragg amplitude "
         "(jitter at that RMS: {:.0f}%).\n",
-        n, rms_word, c->q01_vs_rms, c->min_vs_rms, disorder_word, c->q01_vs_disorder, order_word, c->q01_vs_order,
+        n, rms_word, c->q01_vs_rms, c->min_vs_rms, c->min_rms_difference.tie() ? ", a tie" : "", disorder_word, c->q01_vs_disorder, order_word, c->q01_vs_order,
         100.0 * c->unmoved, c->median_over_rms, 100.0 * c->order,
         100.0 * std::pow(std::sin(2 * std::numbers::pi * c->rms * std::sqrt(3.0 / n)) /
                              (2 * std::numbers::pi * c->rms * std::sqrt(3.0 / n)), 2));

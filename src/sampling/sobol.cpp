@@ -1,17 +1,16 @@
 #include "sampling/sobol.hpp"
 
 #include <algorithm>
-#include <cstring>
 #include <array>
-#include <utility>
 #include <bit>
-#include "core/message_text.hpp"
-
+#include <cstring>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "core/hash.hpp"
+#include "core/message_text.hpp"
 #include "core/parallel.hpp"
 #include "joe_kuo_table.hpp"
 
@@ -75,7 +74,9 @@ namespace {
 
 // U: std::uint32_t or a vector of them. The vector helpers are always inlined, so that they take the
 // instruction set of their caller (fill_block_avx2 or fill_block); GCC's -Wpsabi note about passing
-// 32-byte vectors without AVX concerns calls that, inlined, never happen.
+// 32-byte vectors without AVX concerns calls that never happen: GCC fails the build if it cannot
+// inline an always_inline call. (The note is issued where templates are instantiated, at the end of
+// the file, so a push/pop around the kernels would not silence it.)
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 template <typename U>
@@ -115,9 +116,8 @@ struct SobolBlocks {
   static constexpr std::size_t stride(std::size_t dims) { return (dims + 7) / 8 * 8; }
   const SobolSequence& sequence;
   std::vector<std::uint32_t> walk;  // row `bit`: direction `bit` of every dimension (reversed for Owen)
-  std::vector<std::uint32_t> keys;  // Owen: one key per dimension
-  std::uint64_t point_stream = 0;   // Owen: hashed with the point index for the bits below the digits
-  bool owen = false;
+  std::vector<std::uint32_t> keys;  // Owen: one key per dimension, lane 0 of (seed, stream, dimension)
+  std::uint64_t stream = 0;         // Owen: stream_key(seed, sobol_scramble)
   double lo = 0.0, side = 1.0;
   double* out = nullptr;
 };
@@ -128,11 +128,20 @@ struct Vector {
   typedef T type __attribute__((vector_size(bytes)));
 };
 
+// Lanes first, first + 1, ... (one per L) of the random bits below the digits: coordinate j's 20 bits, at the top
+// of its 32-bit lane (where fill_block_with's mantissa expects them), are bits 20 (j % 3) up of word
+// j / 3; lanes past the dimension are 0.
+template <std::size_t D, typename U32, std::size_t kWords, std::size_t... L>
+[[gnu::always_inline]] inline U32 below_lanes(const std::array<std::uint64_t, kWords>& words, std::size_t first,
+                                              std::index_sequence<L...>) {
+  return U32{(first + L < D ? static_cast<std::uint32_t>(words[(first + L) / 3] >> (20 * ((first + L) % 3))) << 12 : 0U)...};
+}
+
 // Points [begin, end) of one block: start from digits() of `begin`, then walk the Gray code, one XOR
 // per coordinate. D is the dimension, known at compile time so the loops over coordinates unroll; W
 // is the number of 32-bit lanes of a vector. Digits, keys and the random bits below the digits stay in
 // vectors (writing lanes one by one and reading them back as a vector stalls store forwarding).
-template <std::size_t D, std::size_t W>
+template <std::size_t D, std::size_t W, Scramble S>
 [[gnu::always_inline]] inline void fill_block_with(const SobolBlocks& b, std::uint64_t begin, std::uint64_t end) {
   using U32 = typename Vector<std::uint32_t, 4 * W>::type;
   using U64 = typename Vector<std::uint64_t, 4 * W>::type;
@@ -143,24 +152,24 @@ template <std::size_t D, std::size_t W>
   std::array<U32, kVectors> digits{}, keys{};
   for (std::size_t j = 0; j < D; ++j) {
     const std::uint32_t d = b.sequence.digits(static_cast<std::uint32_t>(begin), static_cast<int>(j));
-    digits[j / W][j % W] = b.owen ? reverse_bits(d) : d;
-    keys[j / W][j % W] = b.owen ? b.keys[j] : 0;
+    digits[j / W][j % W] = S == Scramble::owen ? reverse_bits(d) : d;
+    keys[j / W][j % W] = S == Scramble::owen ? b.keys[j] : 0;
   }
   constexpr std::uint64_t kOneBits = 0x3ff0000000000000;  // the bits of 1.0
   for (std::uint64_t i = begin; i < end; ++i) {
     double* x = b.out + i * D;
-    if (b.owen) {
-      // 20 random bits below the 32 digits per coordinate, three coordinates per hash of (seed, stream,
-      // point, word). Digits and random bits make the 52-bit mantissa of a double in [1, 2): building
-      // it from its bits and subtracting 1 is exact and, unlike an integer conversion, vectorises.
+    if constexpr (S == Scramble::owen) {
+      // 20 random bits below the 32 digits per coordinate: coordinate j takes bits 20 (j % 3) up of
+      // random_bits(seed, stream, point, 1 + j / 3), so they depend on the point and the coordinate
+      // only (not on D), and lane 0, the dimension keys' lane, is never used. Digits and random bits
+      // make the 52-bit mantissa of a double in [1, 2): building it from its bits and subtracting 1 is
+      // exact and, unlike an integer conversion, vectorises.
+      const std::uint64_t point_key = hash_combine(b.stream, i);
       std::array<std::uint64_t, kBelowWords> words;
-      for (std::size_t w = 0; w < kBelowWords; ++w) words[w] = hash_combine(b.point_stream, i * kBelowWords + w);
+      for (std::size_t w = 0; w < kBelowWords; ++w) words[w] = hash_combine(point_key, 1 + w);
       for (std::size_t v = 0; v < kVectors; ++v) {
         const U32 high = owen_scramble_reversed(digits[v], keys[v]);
-        const U32 low = [&]<std::size_t... L>(std::index_sequence<L...>) [[gnu::always_inline]] {
-          return U32{(v * W + L < D ? static_cast<std::uint32_t>(words[(v * W + L) / 3] >> (20 * ((v * W + L) % 3))) << 12
-                                    : 0U)...};
-        }(std::make_index_sequence<W>{});
+        const U32 low = below_lanes<D, U32>(words, v * W, std::make_index_sequence<W>{});
         // Interleave into 64-bit lanes: the random bits in the low half, the digits in the high half.
         U64 halves[2];
         if constexpr (W == 4) {
@@ -193,27 +202,51 @@ template <std::size_t D, std::size_t W>
   }
 }
 
-// Two builds of the same code: SSE2 (every x86-64) and AVX2, chosen at run time. Only integer
-// operations and exact floating-point ones (a double from its bits, minus 1; one multiply and one add
-// that AVX2 alone cannot fuse) differ in instructions, so both give the same bits.
-template <std::size_t D>
+// Two builds of the same code: 4 lanes (SSE2, every x86-64; the only build elsewhere) and, on x86-64,
+// 8 lanes with AVX2, chosen at run time. They give the same bits: integer operations, a double built
+// from its bits minus 1 (exact), then one multiply and one add, rounded alike because this file is
+// compiled with -ffp-contract=off (CMakeLists.txt).
+template <std::size_t D, Scramble S>
 void fill_block(const SobolBlocks& b, std::uint64_t begin, std::uint64_t end) {
-  fill_block_with<D, 4>(b, begin, end);
+  fill_block_with<D, 4, S>(b, begin, end);
 }
 
-template <std::size_t D>
+#if defined(__x86_64__)
+template <std::size_t D, Scramble S>
 [[gnu::target("avx2")]] void fill_block_avx2(const SobolBlocks& b, std::uint64_t begin, std::uint64_t end) {
-  fill_block_with<D, 8>(b, begin, end);
+  fill_block_with<D, 8, S>(b, begin, end);
+}
+#endif
+
+
+// One build's kernels for dimensions 1 ... kMaxDimensions, indexed by dimension - 1.
+using FillBlock = void (*)(const SobolBlocks&, std::uint64_t, std::uint64_t);
+constexpr int kMaxDimensions = 15;  // the rows of the direction table; SobolSequence throws above it
+
+template <Scramble S, bool kAvx2>
+constexpr std::array<FillBlock, kMaxDimensions> fill_block_table() {
+  return []<std::size_t... I>(std::index_sequence<I...>) {
+#if defined(__x86_64__)
+    if constexpr (kAvx2) return std::array<FillBlock, kMaxDimensions>{&fill_block_avx2<I + 1, S>...};
+#endif
+    return std::array<FillBlock, kMaxDimensions>{&fill_block<I + 1, S>...};
+  }(std::make_index_sequence<kMaxDimensions>{});
 }
 
-// fill_block<1> ... fill_block<kMaxDimensions>, indexed by dimension - 1.
-constexpr int kMaxDimensions = 15;  // the rows of the direction table; SobolSequence throws above it
-constexpr auto kFillBlock = []<std::size_t... I>(std::index_sequence<I...>) {
-  return std::array{&fill_block<I + 1>...};
-}(std::make_index_sequence<kMaxDimensions>{});
-constexpr auto kFillBlockAvx2 = []<std::size_t... I>(std::index_sequence<I...>) {
-  return std::array{&fill_block_avx2<I + 1>...};
-}(std::make_index_sequence<kMaxDimensions>{});
+// The kernel for a dimension, scramble and instruction set, chosen once per call of sobol_points.
+FillBlock choose_fill_block(std::size_t dims, Scramble scramble, Simd simd) {
+#if defined(__x86_64__)
+  if (simd == Simd::best && __builtin_cpu_supports("avx2")) {
+    static constexpr auto kOwen = fill_block_table<Scramble::owen, true>();
+    static constexpr auto kNone = fill_block_table<Scramble::none, true>();
+    return (scramble == Scramble::owen ? kOwen : kNone)[dims - 1];
+  }
+#endif
+  (void)simd;
+  static constexpr auto kOwen = fill_block_table<Scramble::owen, false>();
+  static constexpr auto kNone = fill_block_table<Scramble::none, false>();
+  return (scramble == Scramble::owen ? kOwen : kNone)[dims - 1];
+}
 
 }  // namespace
 
@@ -229,22 +262,21 @@ PointSet sobol_points(int dimension, std::uint64_t count, const Box& domain, Scr
   const auto dims = static_cast<std::size_t>(dimension);
   PointSet out{dimension, std::vector<double>(count * dims), domain};
   SobolBlocks blocks{sequence, {}, {}};
-  blocks.owen = scramble == Scramble::owen;
+  const bool owen = scramble == Scramble::owen;
   blocks.walk.resize(static_cast<std::size_t>(SobolSequence::kBits) * SobolBlocks::stride(dims));
   blocks.keys.resize(dims);
   for (std::size_t j = 0; j < dims; ++j) {
     blocks.keys[j] = owen_key(seed, static_cast<int>(j));
     for (int bit = 0; bit < SobolSequence::kBits; ++bit) {
       const std::uint32_t v = sequence.direction(static_cast<int>(j), bit);
-      blocks.walk[static_cast<std::size_t>(bit) * SobolBlocks::stride(dims) + j] = blocks.owen ? reverse_bits(v) : v;
+      blocks.walk[static_cast<std::size_t>(bit) * SobolBlocks::stride(dims) + j] = owen ? reverse_bits(v) : v;
     }
   }
-  blocks.point_stream = stream_key(seed, Stream::sobol_scramble);
+  blocks.stream = stream_key(seed, Stream::sobol_scramble);
   blocks.lo = domain.lo;
   blocks.side = domain.side;
   blocks.out = out.coordinates.data();
-  const bool avx2 = simd == Simd::best && __builtin_cpu_supports("avx2");
-  const auto fill = avx2 ? kFillBlockAvx2[dims - 1] : kFillBlock[dims - 1];
+  const FillBlock fill = choose_fill_block(dims, scramble, simd);
   // Blocks of consecutive points are independent, so the points do not depend on the thread count.
   constexpr std::uint64_t kBlock = 4096;
   const auto block_count = static_cast<std::int64_t>((count + kBlock - 1) / kBlock);

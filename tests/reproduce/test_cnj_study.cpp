@@ -73,6 +73,37 @@ TEST(CnjStudy, ReadingAnswersEveryComparisonAndStatesTheRule) {
   }
 }
 
+// The reading calls a comparison a tie when the per-seed differences CNJ - jitter have a mean within two
+// standard errors of 0, whatever the ratio of the means; here three seeds of the defaults where q01 is
+// always clearly ahead and nn_min is ahead by 0.1, behind by 0.1 and ahead by 0.02.
+TEST(CnjStudy, ReadingCallsDifferencesWithinTwoStandardErrorsATie) {
+  CnjStudyResult result;
+  result.config.dimensions = {3};
+  result.config.seeds = 3;
+  result.config.bases = {NoiseBasis::turning_bands};
+  result.config.frequencies = {CnjOptions{}.frequency};
+  result.config.step_scales = {CnjOptions{}.step_scale};
+  const double cnj_min[] = {0.5, 0.3, 0.42}, jitter_min[] = {0.4, 0.4, 0.4};
+  for (int seed = 0; seed < 3; ++seed) {
+    CnjStudyRow r;
+    r.dimension = 3;
+    r.basis = NoiseBasis::turning_bands;
+    r.frequency = CnjOptions{}.frequency;
+    r.step_scale = CnjOptions{}.step_scale;
+    r.seed = static_cast<std::uint64_t>(seed + 1);
+    r.rms_displacement = 0.6;
+    r.median_over_rms = 0.8;
+    r.cnj = {cnj_min[seed], 0.6 + 0.01 * seed};
+    r.jitter_rms = {jitter_min[seed], 0.3};
+    r.jitter_disorder = r.jitter_order = {0.3, 0.3};
+    result.rows.push_back(r);
+  }
+  const std::string md = cnj_study_markdown(result);
+  EXPECT_NE(md.find("**x2.03** (CNJ wins)"), std::string::npos) << md;        // q01: 0.61 / 0.3
+  EXPECT_NE(md.find("x1.02 (tie: CNJ - jitter +0.007 ± 0.058 s.e.)"), std::string::npos) << md;  // nn_min
+  EXPECT_NE(md.find("min x1.02, a tie"), std::string::npos) << md;
+}
+
 // The paper's lattice: Table 1's K, leaving points dropped and counted, the same rule for the jitter.
 TEST(CnjStudy, PaperLatticeDropsLeavingPointsAndCountsThem) {
   CnjStudyConfig config;
