@@ -10,4 +10,23 @@ enum class Simd {
   baseline,  // SSE2, which every x86-64 CPU has
 };
 
+// Whether this CPU runs the AVX2 build (Sobol's scramble) and the AVX-512 build (F, DQ and VL: the
+// turning-bands band loop). False off x86-64, where only the baseline build exists. The kernels and
+// the tests that compare their builds ask the same question here.
+inline bool cpu_has_avx2() {
+#if defined(__x86_64__)
+  return __builtin_cpu_supports("avx2");
+#else
+  return false;
+#endif
+}
+
+inline bool cpu_has_avx512() {
+#if defined(__x86_64__)
+  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl");
+#else
+  return false;
+#endif
+}
+
 }  // namespace dfvn

@@ -56,9 +56,7 @@ template <int kCount>
 template <int kCount>
 BandProfiles choose_band_profiles(Simd simd) {
 #if defined(__x86_64__)
-  if (simd == Simd::best && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-      __builtin_cpu_supports("avx512vl"))
-    return &band_profiles_avx512<kCount>;
+  if (simd == Simd::best && cpu_has_avx512()) return &band_profiles_avx512<kCount>;
 #endif
   (void)simd;
   return &band_profiles_baseline<kCount>;

@@ -105,7 +105,8 @@ CnjResult curl_noise_jitter(const LatticeSpec& lattice, const CnjOptions& option
 
   std::vector<double> ends(sites.size());
   const TracedPoints traced = trace_table<N>(
-      field, options.trace, sites.data(), static_cast<std::size_t>(count), ends.data(), result.trace_time, [&](const Vec<N>& x) { return domain.contains(x.data(), N); },
+      field, options.trace, sites.data(), static_cast<std::size_t>(count), ends.data(), result.trace_time,
+      [&](const Vec<N>& x) { return domain.contains(x.data(), N); },
       options.domain_mode == DomainMode::conformant ? OnReject::retrace : OnReject::drop, threads, progress);
   // Compact and sum in index order, so every output is the same for any thread count.
   result.points = PointSet{N, {}, domain};

@@ -218,7 +218,6 @@ template <std::size_t D, Scramble S>
 }
 #endif
 
-
 // One build's kernels for dimensions 1 ... kMaxDimensions, indexed by dimension - 1.
 using FillBlock = void (*)(const SobolBlocks&, std::uint64_t, std::uint64_t);
 constexpr int kMaxDimensions = 15;  // the rows of the direction table; SobolSequence throws above it
@@ -236,7 +235,7 @@ constexpr std::array<FillBlock, kMaxDimensions> fill_block_table() {
 // The kernel for a dimension, scramble and instruction set, chosen once per call of sobol_points.
 FillBlock choose_fill_block(std::size_t dims, Scramble scramble, Simd simd) {
 #if defined(__x86_64__)
-  if (simd == Simd::best && __builtin_cpu_supports("avx2")) {
+  if (simd == Simd::best && cpu_has_avx2()) {
     static constexpr auto kOwen = fill_block_table<Scramble::owen, true>();
     static constexpr auto kNone = fill_block_table<Scramble::none, true>();
     return (scramble == Scramble::owen ? kOwen : kNone)[dims - 1];
