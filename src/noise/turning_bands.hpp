@@ -35,7 +35,7 @@ class TurningBandsNoise final : public NoiseFunctions<N> {
   static constexpr int kBandsPerFunction = 2 * N;
   static constexpr int kBands = (N - 1) * kBandsPerFunction;
 
-  // `simd`: which build of the band loop runs (core/simd.hpp); every build gives the same bits.
+  // `simd`: which build of the evaluation kernel runs (core/simd.hpp); every build gives the same bits.
   explicit TurningBandsNoise(std::uint64_t seed, Simd simd = Simd::best);
 
   NoiseSample<N, N - 1> evaluate(const Vec<N>& x) const override;
@@ -46,11 +46,19 @@ class TurningBandsNoise final : public NoiseFunctions<N> {
   const Eigen::Matrix<double, kBands, N>& directions() const { return directions_; }
 
  private:
+  // The evaluation kernel works on vectors of up to 8 doubles (AVX-512): 8 bands at a time for the
+  // band coordinates and profiles, one whole direction (N <= 8 coordinates, zero-padded) for a gradient.
+  static constexpr int kLanes = 8;
+  static constexpr int kPaddedBands = (kBands + kLanes - 1) / kLanes * kLanes;
+  struct Kernel;  // its AVX-512 and baseline builds (turning_bands.cpp)
+
   Eigen::Matrix<double, kBands, N> directions_;
-  Eigen::Matrix<double, kBands, 1> offsets_;
-  std::array<std::uint64_t, kBands> keys_;
-  // Value and slope of every band from the band coordinates (AVX-512 or baseline build of one loop).
-  void (*profiles_)(const double* t, const std::uint64_t* keys, double* value, double* slope);
+  // The same bands laid out for the kernel; padding bands have zero directions, offsets and keys.
+  std::array<std::array<double, kPaddedBands>, N> columns_;  // columns_[j][b] = w_b[j]
+  std::array<double, kPaddedBands> offsets_;
+  std::array<std::array<double, kLanes>, kBands> rows_;    // rows_[b] = w_b, zero-padded
+  std::array<std::uint64_t, kPaddedBands> keys_{};
+  void (*kernel_)(const TurningBandsNoise& noise, const Vec<N>& x, NoiseSample<N, N - 1>& out);
 };
 
 // Moments of one band, E p^2 and E p'^2, over a uniform position and slopes uniform in [-1, 1].
