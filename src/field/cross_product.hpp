@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "core/dimension.hpp"
+#include "core/tree_sum.hpp"
 
 namespace dfvn {
 
@@ -20,6 +21,8 @@ namespace dfvn {
 // so with l = L^{-T} e_N: det[A | v] = sign(P) prod(U_kk) sum_i l_i v_{perm(i)}, and
 // det[v | A] = (-1)^(N-1) det[A | v] (moving a column across N-1 others).
 // A rank-deficient A yields an exact zero pivot and the zero vector, which is the correct answer.
+// The time is the latency of one dependent chain, so the pivot search and the row exchange do not
+// branch (a row is exchanged with itself when it is its own pivot) and l's sums are balanced trees.
 template <int N>
 Vec<N> cross(const std::array<Vec<N>, N - 1>& v) {
   double a[N][N - 1];
@@ -31,14 +34,17 @@ Vec<N> cross(const std::array<Vec<N>, N - 1>& v) {
   double scale = (N % 2 == 1) ? 1.0 : -1.0;  // (-1)^(N-1)
   for (int k = 0; k < N - 1; ++k) {
     int pivot = k;
-    for (int i = k + 1; i < N; ++i)
-      if (std::abs(a[i][k]) > std::abs(a[pivot][k])) pivot = i;
-    if (a[pivot][k] == 0.0) return Vec<N>::Zero();
-    if (pivot != k) {
-      for (int j = 0; j < N - 1; ++j) std::swap(a[k][j], a[pivot][j]);
-      std::swap(perm[k], perm[pivot]);
-      scale = -scale;
+    double largest = std::abs(a[k][k]);
+    for (int i = k + 1; i < N; ++i) {
+      const double candidate = std::abs(a[i][k]);
+      const bool larger = candidate > largest;
+      pivot = larger ? i : pivot;
+      largest = larger ? candidate : largest;
     }
+    if (largest == 0.0) return Vec<N>::Zero();
+    for (int j = 0; j < N - 1; ++j) std::swap(a[k][j], a[pivot][j]);
+    std::swap(perm[k], perm[pivot]);
+    scale = pivot != k ? -scale : scale;
     scale *= a[k][k];
     const double inverse_pivot = 1.0 / a[k][k];
     for (int i = k + 1; i < N; ++i) {
@@ -48,12 +54,12 @@ Vec<N> cross(const std::array<Vec<N>, N - 1>& v) {
     }
   }
   // Solve L^T l = e_N by back substitution (L^T is unit upper triangular).
-  double l[N];
+  double l[N] = {};
   l[N - 1] = 1.0;
   for (int i = N - 2; i >= 0; --i) {
-    double sum = 0.0;
-    for (int j = i + 1; j < N; ++j) sum += a[j][i] * l[j];
-    l[i] = -sum;
+    double terms[N];
+    for (int j = 0; j < N; ++j) terms[j] = j > i ? a[j][i] * l[j] : 0.0;
+    l[i] = -tree_sum<N>(terms);
   }
   Vec<N> c;
   for (int i = 0; i < N; ++i) c[perm[i]] = scale * l[i];

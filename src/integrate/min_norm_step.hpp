@@ -7,17 +7,19 @@
 #include <utility>
 
 #include "core/dimension.hpp"
+#include "core/tree_sum.hpp"
 
 namespace dfvn {
 
 // Householder QR with column pivoting of A = J^T (N x (N-1)): A P = Q [R1; 0]. The minimum-norm
 // solution lies in range(A) = range(Q1): v = Q1 w with R1^T w = P^T r.
 //
-// Written out for the fixed sizes instead of Eigen's ColPivHouseholderQR, which handles its
-// reflectors through dynamic-size blocks: for a 7 x 6 matrix that was 15% of a CNJ point's
-// instructions (callgrind), this is about 1%. The arithmetic is the same algorithm (the column of
-// largest remaining norm first, norms recomputed rather than downdated), so the rank test below reads
-// the same diagonal: |R_00| is the largest and |R_{N-2,N-2}| the smallest pivot.
+// Written out for the fixed sizes (Eigen's ColPivHouseholderQR handles its reflectors through
+// dynamic-size blocks: for a 7 x 6 matrix that was 15% of a CNJ point's instructions). The column of
+// largest remaining norm comes first, so |R_00| is the largest and |R_{N-2,N-2}| the smallest pivot.
+// A solve is a chain of small dependent steps (a few hundred cycles of latency, little arithmetic),
+// so every sum is a balanced tree over all N entries, with the entries above the diagonal masked to
+// zero, and the reflector's v^T v comes from its closed form rather than another sum.
 //
 // Returns false, leaving `step` untouched, when A is rank deficient or |R_00| > max_condition
 // |R_{N-2,N-2}|: the update is skipped rather than taken along a direction the rounding chose.
@@ -31,58 +33,54 @@ bool min_norm_step(const std::array<Vec<N>, N - 1>& gradients, const std::array<
     perm[j] = j;
     for (int i = 0; i < N; ++i) a[j][i] = gradients[j][i];
   }
-  double reflector[M][N];  // v_k, entries k..N-1
+  double reflector[M][N];  // v_k, zero above entry k
   double beta[M];          // H_k = I - beta_k v_k v_k^T
   double diagonal[M];      // R_kk
   for (int k = 0; k < M; ++k) {
     int pivot = k;
     double pivot_norm2 = -1.0;
     for (int j = k; j < M; ++j) {
-      double norm2 = 0.0;
-      for (int i = k; i < N; ++i) norm2 += a[j][i] * a[j][i];
-      if (norm2 > pivot_norm2) {
-        pivot = j;
-        pivot_norm2 = norm2;
-      }
+      double terms[N];
+      for (int i = 0; i < N; ++i) terms[i] = i >= k ? a[j][i] * a[j][i] : 0.0;
+      const double norm2 = tree_sum<N>(terms);
+      const bool larger = norm2 > pivot_norm2;
+      pivot = larger ? j : pivot;
+      pivot_norm2 = larger ? norm2 : pivot_norm2;
     }
-    if (pivot != k) {
-      std::swap(a[k], a[pivot]);
-      std::swap(perm[k], perm[pivot]);
-    }
+    std::swap(a[k], a[pivot]);
+    std::swap(perm[k], perm[pivot]);
     // The reflector that maps a[k][k..] onto alpha e_k, alpha of the opposite sign to a[k][k] so that
-    // v_k = x - alpha e_k does not cancel.
+    // v_k = x - alpha e_k does not cancel; v^T v = 2 (|x|^2 + |x_k| |x|).
     const double norm = std::sqrt(pivot_norm2);
     const double alpha = a[k][k] >= 0.0 ? -norm : norm;
+    for (int i = 0; i < N; ++i) reflector[k][i] = i > k ? a[k][i] : 0.0;
     reflector[k][k] = a[k][k] - alpha;
-    for (int i = k + 1; i < N; ++i) reflector[k][i] = a[k][i];
-    double vtv = 0.0;
-    for (int i = k; i < N; ++i) vtv += reflector[k][i] * reflector[k][i];
+    const double vtv = 2.0 * (pivot_norm2 + std::abs(a[k][k]) * norm);
     beta[k] = vtv > 0.0 ? 2.0 / vtv : 0.0;
     diagonal[k] = alpha;
     for (int j = k + 1; j < M; ++j) {
-      double dot = 0.0;
-      for (int i = k; i < N; ++i) dot += reflector[k][i] * a[j][i];
-      const double f = beta[k] * dot;
-      for (int i = k; i < N; ++i) a[j][i] -= f * reflector[k][i];
+      double terms[N];
+      for (int i = 0; i < N; ++i) terms[i] = reflector[k][i] * a[j][i];
+      const double f = beta[k] * tree_sum<N>(terms);
+      for (int i = 0; i < N; ++i) a[j][i] -= f * reflector[k][i];
     }
   }
   const double largest = std::abs(diagonal[0]);
   const double smallest = std::abs(diagonal[M - 1]);
   if (!(smallest > 0.0) || largest > max_condition * smallest) return false;
   // R1^T w = P^T r: forward substitution; R_ik (i < k) is a[k][i] after the reflections.
-  double y[N];
+  double y[N] = {};
   for (int k = 0; k < M; ++k) {
-    double sum = r[perm[k]];
-    for (int i = 0; i < k; ++i) sum -= a[k][i] * y[i];
-    y[k] = sum / diagonal[k];
+    double terms[N];
+    for (int i = 0; i < N; ++i) terms[i] = i < k ? a[k][i] * y[i] : 0.0;
+    y[k] = (r[perm[k]] - tree_sum<N>(terms)) / diagonal[k];
   }
-  y[M] = 0.0;
   // v = Q [w; 0] = H_0 H_1 ... H_{M-1} [w; 0].
   for (int k = M - 1; k >= 0; --k) {
-    double dot = 0.0;
-    for (int i = k; i < N; ++i) dot += reflector[k][i] * y[i];
-    const double f = beta[k] * dot;
-    for (int i = k; i < N; ++i) y[i] -= f * reflector[k][i];
+    double terms[N];
+    for (int i = 0; i < N; ++i) terms[i] = reflector[k][i] * y[i];
+    const double f = beta[k] * tree_sum<N>(terms);
+    for (int i = 0; i < N; ++i) y[i] -= f * reflector[k][i];
   }
   for (int i = 0; i < N; ++i) step[i] = y[i];
   return true;
