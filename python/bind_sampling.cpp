@@ -117,8 +117,9 @@ protocol: 'unit' (every method in [0,1]^dim at the density of a cell-centred lat
 paper's Section 5.1, as `dfvn-sample --protocol paper`, its default). scramble: Owen-scrambled Sobol,
 digit-permuted Halton (False: neither). radius, ncandidates: Poisson disk radius (0: the protocol's) and
 candidates per point. noise, frequency (cycles per lattice spacing), step_scale, integrator,
-reprojection, steps: CNJ's options, defaults as the command line's. cnj drops the points that leave
-[0,1]^dim. threads: 0 = all cores (the result never depends on it).)");
+reprojection, steps: CNJ's options, defaults as the command line's. cnj keeps every point in [0,1]^dim
+(the field bounded by the cube, Eq. 13, as the command line's default). threads: 0 = all cores (the
+result never depends on it).)");
 }
 
 }  // namespace dfvn::python
