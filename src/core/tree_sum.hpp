@@ -5,7 +5,8 @@
 namespace dfvn {
 
 // p[0] + ... + p[n-1] as a balanced tree: ceil(log2 n) dependent additions instead of n - 1. The order
-// is fixed by n, so the result is the same on every run and every build.
+// is fixed by n, so for a given build the result depends only on p. (A build that lets the compiler
+// fuse multiply-adds, e.g. DFVN_NATIVE on an FMA machine, may round the callers' products differently.)
 template <int n>
 [[gnu::always_inline]] inline double tree_sum(const double* p) {
   static_assert(n >= 1);

@@ -17,9 +17,10 @@ namespace dfvn {
 // Written out for the fixed sizes (Eigen's ColPivHouseholderQR handles its reflectors through
 // dynamic-size blocks: for a 7 x 6 matrix that was 15% of a CNJ point's instructions). The column of
 // largest remaining norm comes first, so |R_00| is the largest and |R_{N-2,N-2}| the smallest pivot.
-// A solve is a chain of small dependent steps (a few hundred cycles of latency, little arithmetic),
-// so every sum is a balanced tree over all N entries, with the entries above the diagonal masked to
-// zero, and the reflector's v^T v comes from its closed form rather than another sum.
+// A solve is one long chain of small dependent steps with little arithmetic in each, so every sum runs
+// over all N entries as a balanced tree (core/tree_sum.hpp): the entries outside a column's active
+// part are selected away (norms, forward substitution) or meet the reflector's zeros (reflections),
+// and the reflector's v^T v comes from its closed form rather than another sum.
 //
 // Returns false, leaving `step` untouched, when A is rank deficient or |R_00| > max_condition
 // |R_{N-2,N-2}|: the update is skipped rather than taken along a direction the rounding chose.

@@ -58,9 +58,9 @@ BandMoments quintic_band_moments() {
 }
 
 // One evaluation: band coordinates, profiles, and the sums into values and gradients, on vectors.
-// Built twice, for AVX-512 and for the baseline (355 and 1164 ns per 7D evaluation on this machine;
-// the Eigen products this replaces took 776 ns with the AVX-512 band loop). This file is compiled
-// without fused multiply-adds (CMakeLists.txt), so the builds give the same bits.
+// (With Eigen's products around a vector band loop, the products took as long as the loop.) Built
+// twice, for AVX-512 and for the baseline; this file is compiled without fused multiply-adds
+// (CMakeLists.txt), so the builds give the same bits.
 template <int N>
 struct TurningBandsNoise<N>::Kernel {
   template <int W>

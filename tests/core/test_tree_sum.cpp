@@ -16,15 +16,13 @@ TEST(TreeSum, AddsEveryEntry) {
 }
 
 // The order is the balanced tree: p0 + (p1 + p2) for three numbers, (p0 + p1) + (p2 + p3) for four.
-// Left to right, both would lose the 1 against 1e16.
+// 1e16 + 1 rounds to 1e16, so each order gives its own answer: left to right, the first would be 0
+// and the second 1.
 TEST(TreeSum, SumsInTheBalancedOrder) {
   const double three[3] = {1.0, 1e16, -1e16};
-  EXPECT_EQ(tree_sum<3>(three), 1.0);
-  EXPECT_EQ((three[0] + three[1]) + three[2], 0.0);
-  const double four[4] = {1e16, -1e16, 1.0, 1.0};
-  EXPECT_EQ(tree_sum<4>(four), 2.0);
-  const double four_split[4] = {1e16, 1.0, -1e16, 1.0};
-  EXPECT_EQ(tree_sum<4>(four_split), 0.0);  // (1e16 + 1) + (-1e16 + 1): both 1s are lost
+  EXPECT_EQ(tree_sum<3>(three), 1.0);  // 1 + (1e16 - 1e16)
+  const double four[4] = {1.0, 1e16, -1e16, 1.0};
+  EXPECT_EQ(tree_sum<4>(four), 0.0);  // (1 + 1e16) + (-1e16 + 1): both 1s are lost
 }
 
 }  // namespace

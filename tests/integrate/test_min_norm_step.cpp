@@ -1,5 +1,7 @@
 #include "integrate/min_norm_step.hpp"
 
+#include <limits>
+
 #include <Eigen/Dense>
 
 #include "test_support.hpp"
@@ -61,6 +63,33 @@ TYPED_TEST(MinNormStep, RefusesRankDeficientAndIllConditionedSystems) {
   rows = random_rows<N>(3);
   EXPECT_TRUE(min_norm_step<N>(rows, r, 1e8, step));
   EXPECT_NE(step[0], 42.0);
+}
+
+// A NaN or infinite entry in any gradient, or in the residual, never gives a finite step the caller
+// would take: the solve refuses, or its step is not finite (Tracer checks step.allFinite()).
+TYPED_TEST(MinNormStep, NonFiniteInputNeverGivesAFiniteStep) {
+  constexpr int N = TypeParam::value;
+  const double bad[] = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+                        -std::numeric_limits<double>::infinity()};
+  std::array<double, N - 1> r;
+  r.fill(0.5);
+  for (const double value : bad)
+    for (int row = 0; row < N - 1; ++row)
+      for (int i = 0; i < N; ++i) {
+        auto rows = random_rows<N>(5);
+        rows[row][i] = value;
+        Vec<N> step = Vec<N>::Zero();
+        const bool taken = min_norm_step<N>(rows, r, 1e8, step);
+        EXPECT_FALSE(taken && step.allFinite()) << "gradient " << row << ", entry " << i << " = " << value;
+      }
+  for (const double value : bad)
+    for (int row = 0; row < N - 1; ++row) {
+      std::array<double, N - 1> bad_r = r;
+      bad_r[row] = value;
+      Vec<N> step = Vec<N>::Zero();
+      const bool taken = min_norm_step<N>(random_rows<N>(6), bad_r, 1e8, step);
+      EXPECT_FALSE(taken && step.allFinite()) << "residual " << row << " = " << value;
+    }
 }
 
 }  // namespace

@@ -301,7 +301,7 @@ TEST(TurningBands, EachFunctionsDirectionsFormTwoOrthonormalFrames) {
   }
 }
 
-// The AVX-512 build of the band loop and the baseline build give the same bits (skipped on a CPU without
+// The AVX-512 build of the evaluation kernel and the baseline build give the same bits (skipped on a CPU without
 // AVX-512, where both are the baseline; with DFVN_NATIVE on an AVX-512 machine both builds are AVX-512),
 // at points from near the origin to 1e6 cycles out and on both sides of it, in every dimension.
 template <int N>
