@@ -11,7 +11,7 @@ enum class Simd {
 };
 
 // Whether this CPU runs the AVX2 build (Sobol's scramble) and the AVX-512 build (F, DQ and VL: the
-// turning-bands band loop). False off x86-64, where only the baseline build exists. The kernels and
+// turning-bands evaluation kernel). False off x86-64, where only the baseline build exists. The kernels and
 // the tests that compare their builds ask the same question here.
 inline bool cpu_has_avx2() {
 #if defined(__x86_64__)

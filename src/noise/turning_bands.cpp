@@ -121,19 +121,29 @@ struct TurningBandsNoise<N>::Kernel {
 
 template <int N>
 TurningBandsNoise<N>::TurningBandsNoise(std::uint64_t seed, Simd simd) : kernel_(Kernel::choose(simd)) {
+  for (auto& row : rows_) row.fill(0.0);
   for (int i = 0; i < N - 1; ++i)
     for (int frame = 0; frame < 2; ++frame) {
+      // The frame's columns are the directions of N consecutive bands.
       const auto q = random_frame<N>(seed, Stream::turning_bands, kFrameIndexBase + 2 * static_cast<std::uint64_t>(i) + frame, kFrameLane);
-      directions_.template block<N, N>(i * kBandsPerFunction + frame * N, 0) = q.transpose();
+      for (int r = 0; r < N; ++r)
+        for (int j = 0; j < N; ++j) rows_[i * kBandsPerFunction + frame * N + r][j] = q(j, r);
     }
   for (auto& column : columns_) column.fill(0.0);
   offsets_.fill(0.0);
   for (int b = 0; b < kBands; ++b) {
     keys_[b] = random_bits(seed, Stream::turning_bands, static_cast<std::uint64_t>(b), kKeyLane);
     offsets_[b] = random_unit(seed, Stream::turning_bands, static_cast<std::uint64_t>(b), kOffsetLane);
-    rows_[b].fill(0.0);
-    for (int j = 0; j < N; ++j) columns_[j][b] = rows_[b][j] = directions_(b, j);
+    for (int j = 0; j < N; ++j) columns_[j][b] = rows_[b][j];
   }
+}
+
+template <int N>
+auto TurningBandsNoise<N>::directions() const -> Eigen::Matrix<double, kBands, N> {
+  Eigen::Matrix<double, kBands, N> w;
+  for (int b = 0; b < kBands; ++b)
+    for (int j = 0; j < N; ++j) w(b, j) = rows_[b][j];
+  return w;
 }
 
 template <int N>

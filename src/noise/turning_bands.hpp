@@ -43,7 +43,7 @@ class TurningBandsNoise final : public NoiseFunctions<N> {
   double amplitude() const override;
 
   // One row per band; band b = i * kBandsPerFunction + k belongs to function i.
-  const Eigen::Matrix<double, kBands, N>& directions() const { return directions_; }
+  Eigen::Matrix<double, kBands, N> directions() const;
 
  private:
   // The evaluation kernel works on vectors of up to 8 doubles (AVX-512): 8 bands at a time for the
@@ -52,8 +52,7 @@ class TurningBandsNoise final : public NoiseFunctions<N> {
   static constexpr int kPaddedBands = (kBands + kLanes - 1) / kLanes * kLanes;
   struct Kernel;  // its AVX-512 and baseline builds (turning_bands.cpp)
 
-  Eigen::Matrix<double, kBands, N> directions_;
-  // The same bands laid out for the kernel; padding bands have zero directions, offsets and keys.
+  // The bands in the two layouts the kernel reads; padding bands have zero directions, offsets and keys.
   std::array<std::array<double, kPaddedBands>, N> columns_;  // columns_[j][b] = w_b[j]
   std::array<double, kPaddedBands> offsets_;
   std::array<std::array<double, kLanes>, kBands> rows_;    // rows_[b] = w_b, zero-padded

@@ -222,7 +222,6 @@ CnjStudyResult run_cnj_study(const CnjStudyConfig& config, const StageProgress& 
 
 namespace {
 
-// Means over seeds of one (dimension, basis, frequency, step scale) cell.
 // Per-seed differences CNJ - jitter of one packing comparison: their mean and its standard error.
 struct PairedDifference {
   double sum = 0.0, sum2 = 0.0;
@@ -238,6 +237,7 @@ struct PairedDifference {
   bool tie() const { return runs >= 2 && std::abs(mean()) <= 2.0 * standard_error(); }
 };
 
+// Means over seeds of one (dimension, basis, frequency, step scale) cell.
 struct CellMean {
   int dimension = 0;
   NoiseBasis basis{};

@@ -294,8 +294,9 @@ TEST(TurningBands, BandMomentsHaveTheirClosedForms) {
 // Two full orthonormal frames per function: the directions' outer products sum to 2 I.
 TEST(TurningBands, EachFunctionsDirectionsFormTwoOrthonormalFrames) {
   const TurningBandsNoise<6> noise(3);
+  const Eigen::Matrix<double, 60, 6> directions = noise.directions();
   for (int i = 0; i < 5; ++i) {
-    const auto w = noise.directions().middleRows<12>(i * 12);
+    const auto w = directions.middleRows<12>(i * 12);
     EXPECT_LT((w.transpose() * w - 2.0 * Eigen::Matrix<double, 6, 6>::Identity()).norm(), 1e-12);
     EXPECT_LT((w.topRows<6>() * w.topRows<6>().transpose() - Eigen::Matrix<double, 6, 6>::Identity()).norm(), 1e-12);
   }
