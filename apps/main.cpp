@@ -351,7 +351,11 @@ struct SampleCommand {
     cmd->add_option("--integrator", integrator, "CNJ integrator: euler or rk4")
         ->capture_default_str()
         ->check(CLI::IsMember({"euler", "rk4"}));
-    cmd->add_option("--steps", config.cnj.trace.steps, "CNJ integration steps M")->capture_default_str()->check(CLI::Range(1, 1 << 20));
+    cmd->add_option("--steps", config.cnj.trace.steps,
+                    "CNJ integration steps M (RK4 steps of t / M, each followed by the reprojection); 0 = the\n"
+                    "domain mode's: 1 conformant, 2 drop (data/cnj_defaults.md)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1 << 20));
     cmd->add_option("--step-scale", config.cnj.step_scale,
                     "CNJ trace time t = C * dbar(N) * lattice spacing, dbar the mean distance to the 3^N-1 "
                     "lattice neighbours (Section 5.1); RMS |c| = 1, so t is the RMS move; at most 2^20")

@@ -106,7 +106,7 @@ void bind_sampling(py::module_& module) {
       "protocol"_a = "unit", "scramble"_a = true, "radius"_a = 0.0, "ncandidates"_a = 30,
       "noise"_a = std::string(to_string(cnj.noise)), "frequency"_a = cnj.frequency, "step_scale"_a = cnj.step_scale,
       "integrator"_a = std::string(to_string(cnj.trace.integrator)),
-      "reprojection"_a = std::string(to_string(cnj.trace.reprojection)), "steps"_a = cnj.trace.steps, "threads"_a = 0,
+      "reprojection"_a = std::string(to_string(cnj.trace.reprojection)), "steps"_a = cnj_steps(cnj), "threads"_a = 0,
       R"(One point set as an (n, dim) float64 array, the same bits as `dfvn-sample --points DIR --format npy`.
 
 method: 'cnj' (curl noise jittering), 'jitter', 'pds' (Poisson disk), 'sobol', 'random', 'halton', 'lhs'.
@@ -118,7 +118,8 @@ paper's Section 5.1, as `dfvn-sample --protocol paper`, its default). scramble: 
 digit-permuted Halton (False: neither). radius, ncandidates: Poisson disk radius (0: the protocol's) and
 candidates per point. noise, frequency (cycles per lattice spacing), step_scale, integrator,
 reprojection, steps: CNJ's options, defaults as the command line's. cnj keeps every point in [0,1]^dim
-(the field bounded by the cube, Eq. 13, as the command line's default). threads: 0 = all cores (the
+(the field bounded by the cube, Eq. 13, as the command line's default), so steps 0 (the domain mode's
+count) means 1. threads: 0 = all cores (the
 result never depends on it).)");
 }
 

@@ -62,7 +62,7 @@ int main(int argc, char** argv) {
   }
   const double time = options.step_scale * dfvn::average_neighbour_distance(N) * lattice.spacing();
   const dfvn::DfvnField<N> field(1, dfvn::FieldOptions{options.noise, options.frequency / lattice.spacing()});
-  const dfvn::Tracer<N> tracer(field, options.trace);
+  const dfvn::Tracer<N> tracer(field, dfvn::cnj_trace_options(options));
   dfvn::TraceStats stats;
   double checksum = 0.0;
   for (long i = 0; i < points; ++i) {

@@ -134,8 +134,8 @@ std::string table1_markdown(const Table1Result& result) {
   md += fmt::format(
       "- **CNJ** (ours vs paper, median (min){}): {}. The paper's step constant and noise frequency are not "
       "published, so our row uses our defaults ({} noise, step scale {:g}, frequency {:g} cycles per lattice "
-      "spacing, chosen by the rule of `reproduce cnj-study`; data/cnj_defaults.md).\n",
-      means, cnj, to_string(o.noise), o.step_scale, o.frequency);
+      "spacing, {} RK4 step{}, chosen by the rule of `reproduce cnj-study`; data/cnj_defaults.md).\n",
+      means, cnj, to_string(o.noise), o.step_scale, o.frequency, cnj_steps(o), cnj_steps(o) == 1 ? "" : "s");
   // Which construction moved points, and how far (displacements over every traced point, in spacings;
   // the first realization).
   std::string moved;

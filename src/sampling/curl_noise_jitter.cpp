@@ -28,8 +28,22 @@ DomainMode parse_domain_mode(std::string_view name) {
 
 std::string_view to_string(DomainMode mode) { return mode == DomainMode::conformant ? "conformant" : "drop"; }
 
+int cnj_steps(const CnjOptions& options) {
+  if (options.trace.steps != CnjOptions::kStepsByDomainMode) return options.trace.steps;
+  return options.domain_mode == DomainMode::drop ? kDropModeSteps : 1;
+}
+
+TraceOptions cnj_trace_options(const CnjOptions& options) {
+  TraceOptions trace = options.trace;
+  trace.steps = cnj_steps(options);
+  return trace;
+}
+
 void CnjOptions::validate() const {
-  trace.validate();
+  if (trace.steps < 0)
+    throw std::invalid_argument(
+        fmt::format("CNJ steps must be at least 1, or 0 for the domain mode's count; got {}", trace.steps));
+  cnj_trace_options(*this).validate();
   if (!(step_scale > 0.0 && step_scale <= kMaxStepScale))
     throw std::invalid_argument(fmt::format("step scale must be in (0, 2^20], got {:g}", step_scale));
   check_noise_frequency(frequency);
@@ -38,8 +52,8 @@ void CnjOptions::validate() const {
   if (!(boundary_width > 0.0 && boundary_width <= 1e6))
     throw std::invalid_argument(fmt::format("boundary width must be in (0, 1e6] lattice spacings, got {:g}", boundary_width));
   // Refinements double the steps kMaxRefinements times: keep that an int.
-  if (domain_mode == DomainMode::conformant && trace.steps > (1 << 20))
-    throw std::invalid_argument(fmt::format("conformant CNJ takes at most 2^20 steps, got {}", trace.steps));
+  if (domain_mode == DomainMode::conformant && cnj_steps(*this) > (1 << 20))
+    throw std::invalid_argument(fmt::format("conformant CNJ takes at most 2^20 steps, got {}", cnj_steps(*this)));
 }
 
 double cnj_transition_width(const CnjOptions& options, const LatticeSpec& lattice) {
@@ -105,7 +119,7 @@ CnjResult curl_noise_jitter(const LatticeSpec& lattice, const CnjOptions& option
 
   std::vector<double> ends(sites.size());
   const TracedPoints traced = trace_table<N>(
-      field, options.trace, sites.data(), static_cast<std::size_t>(count), ends.data(), result.trace_time,
+      field, cnj_trace_options(options), sites.data(), static_cast<std::size_t>(count), ends.data(), result.trace_time,
       [&](const Vec<N>& x) { return domain.contains(x.data(), N); },
       options.domain_mode == DomainMode::conformant ? OnReject::retrace : OnReject::drop, threads, progress);
   // Compact and sum in index order, so every output is the same for any thread count.

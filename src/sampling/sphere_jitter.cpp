@@ -59,8 +59,12 @@ static SphereCnjResult sphere_curl_noise_jitter(int grid, const CnjOptions& opti
   const DfvnField<N> field(seed, FieldOptions{options.noise, result.field_frequency, FieldConstraint::on_sphere});
   const PointSet starts = sphere_start_set(N, grid);
   std::vector<double> ends(starts.coordinates.size());
+  // Every trace is bound to the sphere and refined when it ends off it, as in a conformant domain:
+  // the conformant step count, whatever the domain mode says.
+  CnjOptions bound = options;
+  bound.domain_mode = DomainMode::conformant;
   const TracedPoints traced = trace_table<N>(
-      field, options.trace, starts.coordinates.data(), starts.size(), ends.data(), result.trace_time,
+      field, cnj_trace_options(bound), starts.coordinates.data(), starts.size(), ends.data(), result.trace_time,
       [](const Vec<N>& x) { return satisfies_constraint<N>(FieldConstraint::on_sphere, x); }, OnReject::retrace,
       threads, progress);
   double total_squared_displacement = 0.0;  // in index order

@@ -88,7 +88,7 @@ def test_same_seed_same_bits_other_seed_other_points_any_threads():
         (("jitter", 3), {"grid": 1}, ValueError, "grid"),
         (("sobol", 3), {"grid": 4, "protocol": "box"}, ValueError, "box"),
         (("cnj", 3), {"grid": 4, "noise": "perlin"}, ValueError, "perlin"),
-        (("cnj", 3), {"grid": 4, "steps": 0}, ValueError, "steps"),
+        (("cnj", 3), {"grid": 4, "steps": -1}, ValueError, "steps"),
         (("sobol", 3), {"grid": 4, "colour": "red"}, TypeError, "colour|argument"),
         (("sobol", 3), {"n": -5}, TypeError, ""),
     ],
