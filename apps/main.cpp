@@ -603,9 +603,10 @@ struct ReproduceCommand {
     CLI::App* s = cmd->add_subcommand(
         "cnj-study",
         "CNJ (each noise basis) against random jitter over noise frequencies 0.1, 0.2, 0.35, 0.5, 1 cycles per\n"
-        "spacing and step scales 0.2, 0.35, 0.5, compared at equal RMS displacement, neighbour disorder and lattice\n"
-        "order (--lattice interior: interior points of a K^N lattice, nothing dropped; --lattice paper: Table 1's\n"
-        "lattice, points leaving [0,1]^N dropped as the paper does). Writes DIR/cnj_study.csv,\n"
+        "spacing and step scales 0.2, 0.35, 0.5 (one integration step unless --steps), compared at equal RMS\n"
+        "displacement, neighbour disorder and lattice order (--lattice interior: interior points of a K^N lattice,\n"
+        "nothing dropped; --lattice paper: Table 1's lattice, points leaving [0,1]^N dropped as the paper does).\n"
+        "Writes DIR/cnj_study.csv,\n"
         "DIR/cnj_study_jitter.csv, DIR/cnj_study.md and (with gnuplot) DIR/cnj_study.png; prints the Markdown as plain text.\n"
         "The CNJ defaults come from this study's rule (data/cnj_defaults.md).");
     s->add_option("--out", study.out_dir, "Output directory")->capture_default_str();
@@ -625,6 +626,12 @@ struct ReproduceCommand {
     s->add_option("--step-scales", study.step_scales, "Comma list of step scales C (t = C dbar(N) spacing)")
         ->delimiter(',')
         ->capture_default_str();
+    s->add_option("--steps", study.steps,
+                  "Comma list of integration steps M per trace (RK4 steps of t / M, each followed by the\n"
+                  "reprojection; Section 5.1 takes 1)")
+        ->delimiter(',')
+        ->capture_default_str()
+        ->check(CLI::Range(1, dfvn::kMaxStudySteps));
     progress.add_to(*s);
     add_common_options(*s, common3);
     s->callback([this] { run_cnj_study(); });

@@ -35,12 +35,15 @@ void CnjStudyConfig::validate() const {
   if (dimensions.empty()) throw std::invalid_argument("--dims must name at least one dimension");
   for (int d : dimensions) study_grid(lattice, d);
   if (seeds < 1 || seeds > 1000) throw std::invalid_argument(fmt::format("--seeds must be in 1..1000, got {}", seeds));
-  if (bases.empty() || frequencies.empty() || step_scales.empty())
-    throw std::invalid_argument("the study needs at least one basis, frequency and step scale");
+  if (bases.empty() || frequencies.empty() || step_scales.empty() || steps.empty())
+    throw std::invalid_argument("the study needs at least one basis, frequency, step scale and step count");
   for (double f : frequencies)
     if (!std::isfinite(f) || !(f > 0.0)) throw std::invalid_argument("study frequencies must be finite and positive");
   for (double c : step_scales)
     if (!std::isfinite(c) || !(c > 0.0)) throw std::invalid_argument("study step scales must be finite and positive");
+  for (int m : steps)
+    if (m < 1 || m > kMaxStudySteps)
+      throw std::invalid_argument(fmt::format("--steps must be in 1..{}, got {}", kMaxStudySteps, m));
 }
 
 int cnj_study_grid(int dimension) {
@@ -149,7 +152,8 @@ CnjStudyResult run_cnj_study(const CnjStudyConfig& config, const StageProgress& 
   CnjStudyResult result;
   result.config = config;
   const std::size_t runs_per_dimension =
-      config.bases.size() * config.frequencies.size() * config.step_scales.size() * static_cast<std::size_t>(config.seeds);
+      config.bases.size() * config.frequencies.size() * config.step_scales.size() * config.steps.size() *
+      static_cast<std::size_t>(config.seeds);
   for (int n : config.dimensions) {
     const bool paper = config.lattice == StudyLattice::paper;
     const LatticeSpec lattice{n, study_grid(config.lattice, n), paper ? Protocol::paper : Protocol::unit};
@@ -161,6 +165,7 @@ CnjStudyResult run_cnj_study(const CnjStudyConfig& config, const StageProgress& 
     for (NoiseBasis basis : config.bases)
       for (double frequency : config.frequencies)
         for (double step_scale : config.step_scales)
+          for (int steps : config.steps)
           for (int s = 0; s < config.seeds; ++s) {
             if (progress) progress(stage, static_cast<double>(done++) / static_cast<double>(runs_per_dimension));
             CnjStudyRow row;
@@ -169,11 +174,13 @@ CnjStudyResult run_cnj_study(const CnjStudyConfig& config, const StageProgress& 
             row.basis = basis;
             row.frequency = frequency;
             row.step_scale = step_scale;
+            row.steps = steps;
             row.seed = config.seed + static_cast<std::uint64_t>(s);
             CnjOptions options;
             options.noise = basis;
             options.frequency = frequency;
             options.step_scale = step_scale;
+            options.trace.steps = steps;
             options.domain_mode = DomainMode::drop;  // the free field: the study measures interior packing
             const CnjResult cnj = curl_noise_jitter(lattice, options, row.seed, config.threads);
             // Every traced point, inside [0,1]^N or not: x = site + displacement.
@@ -237,11 +244,12 @@ struct PairedDifference {
   bool tie() const { return runs >= 2 && std::abs(mean()) <= 2.0 * standard_error(); }
 };
 
-// Means over seeds of one (dimension, basis, frequency, step scale) cell.
+// Means over seeds of one (dimension, basis, frequency, step scale, steps) cell.
 struct CellMean {
   int dimension = 0;
   NoiseBasis basis{};
   double frequency = 0.0, step_scale = 0.0;
+  int steps = 1;
   int runs = 0;
   double rms = 0.0, median_over_rms = 0.0, unmoved = 0.0, disorder = 0.0, order = 0.0, skipped = 0.0, dropped = 0.0;
   double q01 = 0.0, min = 0.0;
@@ -254,13 +262,14 @@ std::vector<CellMean> cell_means(const CnjStudyResult& result) {
   struct JitterSums {
     double q01_rms = 0.0, min_rms = 0.0, q01_disorder = 0.0, q01_order = 0.0;
   };
-  std::map<std::tuple<int, int, double, double>, std::pair<CellMean, JitterSums>> cells;
+  std::map<std::tuple<int, int, double, double, int>, std::pair<CellMean, JitterSums>> cells;
   for (const CnjStudyRow& r : result.rows) {
-    auto& [c, jitter] = cells[{r.dimension, static_cast<int>(r.basis), r.frequency, r.step_scale}];
+    auto& [c, jitter] = cells[{r.dimension, static_cast<int>(r.basis), r.frequency, r.step_scale, r.steps}];
     c.dimension = r.dimension;
     c.basis = r.basis;
     c.frequency = r.frequency;
     c.step_scale = r.step_scale;
+    c.steps = r.steps;
     ++c.runs;
     c.rms += r.rms_displacement;
     c.median_over_rms += r.median_over_rms;
@@ -296,10 +305,18 @@ std::vector<CellMean> cell_means(const CnjStudyResult& result) {
 }
 
 const CellMean* find_cell(const std::vector<CellMean>& cells, int dimension, NoiseBasis basis, double frequency,
-                          double step_scale) {
+                          double step_scale, int steps) {
   for (const CellMean& c : cells)
-    if (c.dimension == dimension && c.basis == basis && c.frequency == frequency && c.step_scale == step_scale) return &c;
+    if (c.dimension == dimension && c.basis == basis && c.frequency == frequency && c.step_scale == step_scale &&
+        c.steps == steps)
+      return &c;
   return nullptr;
+}
+
+// "frequency / step scale", and " / M steps" when the study compares step counts.
+std::string cell_label(const CellMean& c, const CnjStudyConfig& config) {
+  if (config.steps.size() == 1) return fmt::format("{:g} / {:g}", c.frequency, c.step_scale);
+  return fmt::format("{:g} / {:g} / {} step{}", c.frequency, c.step_scale, c.steps, c.steps == 1 ? "" : "s");
 }
 
 bool moves_points(const CellMean& c) { return c.unmoved <= 0.01 && c.median_over_rms >= 0.5; }
@@ -323,11 +340,12 @@ std::optional<CnjDefaultsChoice> choose_cnj_defaults(const CnjStudyResult& resul
   const auto cells = cell_means(result);
   std::optional<CnjDefaultsChoice> best;
   for (double f : result.config.frequencies)
-    for (double c : result.config.step_scales) {
+    for (double c : result.config.step_scales)
+    for (int m : result.config.steps) {
       bool qualifies = true;
       double log_sum = 0.0;
       for (int n : result.config.dimensions) {
-        const CellMean* cell = find_cell(cells, n, kDefaultNoiseBasis, f, c);
+        const CellMean* cell = find_cell(cells, n, kDefaultNoiseBasis, f, c, m);
         if (!cell || !moves_points(*cell) || !beats_jitter_at_equal_rms(*cell)) {
           qualifies = false;
           break;
@@ -336,7 +354,7 @@ std::optional<CnjDefaultsChoice> choose_cnj_defaults(const CnjStudyResult& resul
       }
       if (!qualifies) continue;
       const double score = std::exp(log_sum / static_cast<double>(result.config.dimensions.size()));
-      if (!best || score > best->score) best = CnjDefaultsChoice{f, c, score};
+      if (!best || score > best->score) best = CnjDefaultsChoice{f, c, m, score};
     }
   return best;
 }
@@ -344,11 +362,15 @@ std::optional<CnjDefaultsChoice> choose_cnj_defaults(const CnjStudyResult& resul
 std::string cnj_study_markdown(const CnjStudyResult& result) {
   const CnjStudyConfig& cfg = result.config;
   const auto cells = cell_means(result);
-  const CnjOptions defaults;
+  CnjOptions defaults;
+  defaults.domain_mode = DomainMode::drop;  // as every run of the study
+  const int default_steps = cnj_steps(defaults);
   const bool paper = cfg.lattice == StudyLattice::paper;
   std::string md = paper ? "# CNJ against jitter on the paper's lattice\n\n" : "# CNJ against jitter: the study\n\n";
+  std::string steps_text;
+  for (std::size_t i = 0; i < cfg.steps.size(); ++i) steps_text += fmt::format("{}{}", i ? ", " : "", cfg.steps[i]);
   md += fmt::format(
-      "Curl noise jittering (one RK4 step + Gauss-Newton reprojection) of {}, "
+      "Curl noise jittering ({}) of {}, "
       "against uniform jitter of the same lattice, {} seed(s) per cell (seeds {}..{}). Packing = nearest-neighbour "
       "distance {}, nn_q01 = its 1% quantile, all in lattice spacings. Each CNJ run is compared with three jitter runs of the "
       "same lattice and seed, whose half-width h matches CNJ's RMS displacement (h = rms sqrt(3/N)), neighbour "
@@ -356,6 +378,9 @@ std::string cnj_study_markdown(const CnjStudyResult& result) {
       "(surviving Bragg amplitude; (sin 2 pi h / 2 pi h)^2 = order). Ratios are CNJ / jitter of seed means; "
       "above 1, CNJ packs better, unless the per-seed differences CNJ - jitter have a mean within two standard "
       "errors of 0 (a tie, with that mean and standard error in spacings). {:.0f} s on this machine ({} thread(s) requested, 0 = all cores).\n\n",
+      cfg.steps == std::vector<int>{1}
+          ? std::string("one RK4 step + Gauss-Newton reprojection")
+          : fmt::format("M = {} RK4 steps of t / M, each followed by a Gauss-Newton reprojection", steps_text),
       paper ? "the paper's Table 1 lattice (linspace(0.05, 0.95, K) per axis)" : "a cell-centred K^N lattice in [0,1]^N",
       cfg.seeds, cfg.seed, cfg.seed + static_cast<std::uint64_t>(cfg.seeds) - 1,
       paper ? "over every point that stays in [0,1]^N (points that leave are dropped, for CNJ and jitter alike, as the "
@@ -373,12 +398,14 @@ std::string cnj_study_markdown(const CnjStudyResult& result) {
 
   // The answers, per dimension: the library defaults, then the best cell of each comparison.
   md += "## Answers per dimension\n\n";
-  md += fmt::format("For the library defaults ({} noise, frequency {:g} cycles per spacing, step scale {:g}):\n\n",
-                    to_string(defaults.noise), defaults.frequency, defaults.step_scale);
+  md += fmt::format(
+      "For the library defaults ({} noise, frequency {:g} cycles per spacing, step scale {:g}, {} integration step{}):\n\n",
+      to_string(defaults.noise), defaults.frequency, defaults.step_scale, default_steps,
+      default_steps == 1 ? "" : "s");
   md += "| n | RMS move | median/RMS | unmoved | dropped | q01 vs jitter at equal RMS | nn_min vs jitter at equal RMS | "
         "q01 at equal disorder | q01 at equal order |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (int n : cfg.dimensions) {
-    const CellMean* c = find_cell(cells, n, defaults.noise, defaults.frequency, defaults.step_scale);
+    const CellMean* c = find_cell(cells, n, defaults.noise, defaults.frequency, defaults.step_scale, default_steps);
     if (!c) {
       md += fmt::format("| {} | (defaults not in the studied grid) | | | | | | | |\n", n);
       continue;
@@ -387,7 +414,9 @@ std::string cnj_study_markdown(const CnjStudyResult& result) {
                       100.0 * c->unmoved, 100.0 * c->dropped, verdict(c->q01_vs_rms, c->q01_rms_difference), verdict(c->min_vs_rms, c->min_rms_difference),
                       verdict(c->q01_vs_disorder, c->q01_disorder_difference), verdict(c->q01_vs_order, c->q01_order_difference));
   }
-  md += "\nThe best any studied cell of each basis does (largest ratio; its frequency / step scale in brackets):\n\n";
+  md += fmt::format("\nThe best any studied cell of each basis does (largest ratio; its frequency / step scale{} in "
+                    "brackets):\n\n",
+                    cfg.steps.size() == 1 ? "" : " / steps");
   md += "| n | basis | best q01 at equal RMS | best q01 at equal disorder | best q01 at equal order |\n"
         "| --- | --- | --- | --- | --- |\n";
   for (int n : cfg.dimensions)
@@ -400,16 +429,15 @@ std::string cnj_study_markdown(const CnjStudyResult& result) {
         if (!best_order || c.q01_vs_order > best_order->q01_vs_order) best_order = &c;
       }
       if (!best_rms) continue;
-      md += fmt::format("| {} | {} | x{:.2f} ({:g} / {:g}) | x{:.2f} ({:g} / {:g}) | x{:.2f} ({:g} / {:g}) |\n", n,
-                        to_string(b), best_rms->q01_vs_rms, best_rms->frequency, best_rms->step_scale,
-                        best_disorder->q01_vs_disorder, best_disorder->frequency, best_disorder->step_scale,
-                        best_order->q01_vs_order, best_order->frequency, best_order->step_scale);
+      md += fmt::format("| {} | {} | x{:.2f} ({}) | x{:.2f} ({}) | x{:.2f} ({}) |\n", n, to_string(b),
+                        best_rms->q01_vs_rms, cell_label(*best_rms, cfg), best_disorder->q01_vs_disorder,
+                        cell_label(*best_disorder, cfg), best_order->q01_vs_order, cell_label(*best_order, cfg));
     }
 
   // The reading, from the numbers.
   md += "\n## Reading\n\n";
   for (int n : cfg.dimensions) {
-    const CellMean* c = find_cell(cells, n, defaults.noise, defaults.frequency, defaults.step_scale);
+    const CellMean* c = find_cell(cells, n, defaults.noise, defaults.frequency, defaults.step_scale, default_steps);
     if (!c) continue;
     const char* rms_word = beats_word(c->q01_vs_rms, c->q01_rms_difference);
     const char* disorder_word = beats_word(c->q01_vs_disorder, c->q01_disorder_difference);
@@ -425,9 +453,10 @@ std::string cnj_study_markdown(const CnjStudyResult& result) {
                              (2 * std::numbers::pi * c->rms * std::sqrt(3.0 / n)), 2));
   }
   for (int n : cfg.dimensions) {
-    const CellMean* s = find_cell(cells, n, NoiseBasis::simplex, defaults.frequency, defaults.step_scale);
+    const CellMean* s =
+        find_cell(cells, n, NoiseBasis::simplex, defaults.frequency, defaults.step_scale, default_steps);
     if (!s) continue;
-    md += fmt::format("- **simplex {}D** (same frequency and step scale): {:.1f}% of points unmoved, median/RMS "
+    md += fmt::format("- **simplex {}D** (same frequency, step scale and steps): {:.1f}% of points unmoved, median/RMS "
                       "displacement {:.2g}, q01 vs jitter at equal RMS x{:.2f}.\n",
                       n, 100.0 * s->unmoved, s->median_over_rms, s->q01_vs_rms);
   }
@@ -438,27 +467,29 @@ std::string cnj_study_markdown(const CnjStudyResult& result) {
   const auto choice = choose_cnj_defaults(result);
   md += "\n## The defaults and the rule that chose them\n\n";
   md += "Rule (src/reproduce/cnj_study.hpp, choose_cnj_defaults): on the default basis and means over seeds, keep "
-        "the (frequency, step scale) pairs that in every studied dimension move points (at most 1% unmoved, "
+        "the (frequency, step scale, steps) cells that in every studied dimension move points (at most 1% unmoved, "
         "median/RMS displacement at least 0.5) and beat jitter at equal RMS displacement in both nn_q01 and nn_min; "
         "take the one with the largest geometric mean over dimensions of the q01 ratio at equal neighbour disorder, "
         "the comparison that does not reward moving neighbours together.\n\n";
   if (choice)
-    md += fmt::format("The rule picks frequency {:g} and step scale {:g} (score {:.3f}); the library defaults are {:g} "
-                      "and {:g}: {}.\n",
-                      choice->frequency, choice->step_scale, choice->score, defaults.frequency, defaults.step_scale,
-                      choice->frequency == defaults.frequency && choice->step_scale == defaults.step_scale
+    md += fmt::format("The rule picks frequency {:g}, step scale {:g} and {} step{} (score {:.3f}); the library defaults "
+                      "are {:g}, {:g} and {}: {}.\n",
+                      choice->frequency, choice->step_scale, choice->steps, choice->steps == 1 ? "" : "s",
+                      choice->score, defaults.frequency, defaults.step_scale, default_steps,
+                      choice->frequency == defaults.frequency && choice->step_scale == defaults.step_scale &&
+                              choice->steps == default_steps
                           ? "the same"
                           : "DIFFERENT (run on the full grid and seeds before changing them)");
   else
-    md += "No studied pair meets the rule's conditions in every dimension here.\n";
+    md += "No studied cell meets the rule's conditions in every dimension here.\n";
 
-  md += "\n## Every cell\n\n| n | basis | frequency | step scale | RMS move | median/RMS | unmoved | disorder | order | "
+  md += "\n## Every cell\n\n| n | basis | frequency | step scale | steps | RMS move | median/RMS | unmoved | disorder | order | "
         "skipped GN | q01 | min | q01/jit(rms) | min/jit(rms) | q01/jit(disorder) | q01/jit(order) |\n"
-        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const CellMean& c : cells)
-    md += fmt::format("| {} | {} | {:g} | {:g} | {:.3f} | {:.2f} | {:.2f}% | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | "
+    md += fmt::format("| {} | {} | {:g} | {:g} | {} | {:.3f} | {:.2f} | {:.2f}% | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | "
                       "{:.2f} | {:.2f} | {:.2f} | {:.2f} |\n",
-                      c.dimension, to_string(c.basis), c.frequency, c.step_scale, c.rms, c.median_over_rms,
+                      c.dimension, to_string(c.basis), c.frequency, c.step_scale, c.steps, c.rms, c.median_over_rms,
                       100.0 * c.unmoved, c.disorder, c.order, c.skipped, c.q01, c.min, c.q01_vs_rms, c.min_vs_rms,
                       c.q01_vs_disorder, c.q01_vs_order);
   return md;
@@ -469,15 +500,15 @@ std::string write_cnj_study(const CnjStudyResult& result, const Log& log) {
   std::string rows =
       "dim,grid,noise,frequency,step_scale,seed,rms_displacement,median_over_rms,frac_unmoved,neighbour_disorder,"
       "lattice_order,skipped_update_fraction,cnj_nn_min,cnj_nn_q01,h_rms,jitter_rms_nn_min,jitter_rms_nn_q01,"
-      "h_disorder,jitter_disorder_nn_min,jitter_disorder_nn_q01,h_order,jitter_order_nn_min,jitter_order_nn_q01,dropped_fraction\n";
+      "h_disorder,jitter_disorder_nn_min,jitter_disorder_nn_q01,h_order,jitter_order_nn_min,jitter_order_nn_q01,dropped_fraction,steps\n";
   for (const CnjStudyRow& r : result.rows)
     rows += fmt::format("{},{},{},{:g},{:g},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},"
-                        "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
+                        "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{}\n",
                         r.dimension, r.grid, to_string(r.basis), r.frequency, r.step_scale, r.seed, r.rms_displacement,
                         r.median_over_rms, r.fraction_unmoved, r.neighbour_disorder, r.lattice_order,
                         r.skipped_update_fraction, r.cnj.nn_min, r.cnj.nn_q01, r.h_rms, r.jitter_rms.nn_min,
                         r.jitter_rms.nn_q01, r.h_disorder, r.jitter_disorder.nn_min, r.jitter_disorder.nn_q01, r.h_order,
-                        r.jitter_order.nn_min, r.jitter_order.nn_q01, r.dropped_fraction);
+                        r.jitter_order.nn_min, r.jitter_order.nn_q01, r.dropped_fraction, r.steps);
   std::string curve = "dim,half_width,rms_displacement,neighbour_disorder,lattice_order,nn_min,nn_q01\n";
   for (const JitterCurvePoint& p : result.jitter_curve)
     curve += fmt::format("{},{:g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n", p.dimension, p.half_width, p.rms_displacement,

@@ -1,5 +1,5 @@
 // The CNJ study: curl noise jittering (each noise basis) against random jitter over a grid of noise
-// frequencies and step scales, compared at equal RMS displacement, equal neighbour disorder and equal
+// frequencies, step scales and integration step counts, compared at equal RMS displacement, equal neighbour disorder and equal
 // lattice order. It chooses the CNJ defaults (CnjOptions) by a stated rule.
 #pragma once
 
@@ -11,6 +11,7 @@
 
 #include "noise/noise_functions.hpp"
 #include "reproduce/reproduce.hpp"
+#include "sampling/curl_noise_jitter.hpp"
 
 namespace dfvn {
 
@@ -24,6 +25,8 @@ enum class StudyLattice { interior, paper };
 std::string_view to_string(StudyLattice lattice);
 StudyLattice parse_study_lattice(std::string_view name);  // throws std::invalid_argument
 
+inline constexpr int kMaxStudySteps = 1 << 20;  // the CLI's --steps bound
+
 struct CnjStudyConfig {
   StudyLattice lattice = StudyLattice::interior;
   std::vector<int> dimensions = {3, 4, 5, 6, 7};
@@ -32,6 +35,9 @@ struct CnjStudyConfig {
   std::vector<NoiseBasis> bases = {NoiseBasis::simplex, NoiseBasis::turning_bands};
   std::vector<double> frequencies = {0.1, 0.2, 0.35, 0.5, 1.0};  // cycles per lattice spacing
   std::vector<double> step_scales = {0.2, 0.35, 0.5};           // t = C dbar(N) spacing
+  // Integration steps M per trace (Algorithm 1, each step RK4 + reprojection): Section 5.1's one, and
+  // the free field's default (kDropModeSteps).
+  std::vector<int> steps = {1, kDropModeSteps};
   int threads = 0;
   std::string out_dir = "out/cnj-study";
 
@@ -59,6 +65,7 @@ struct CnjStudyRow {
   NoiseBasis basis{};
   double frequency = 0.0;
   double step_scale = 0.0;
+  int steps = 1;
   std::uint64_t seed = 0;
   // CNJ, displacements in spacings, over every lattice point.
   double rms_displacement = 0.0;
@@ -94,14 +101,15 @@ struct CnjStudyResult {
 CnjStudyResult run_cnj_study(const CnjStudyConfig& config, const StageProgress& progress = {});
 
 // The rule that picks the CNJ defaults, applied to the default basis (kDefaultNoiseBasis), on means
-// over seeds: among the (frequency, step scale) pairs that in EVERY studied dimension move points
+// over seeds: among the (frequency, step scale, steps) cells that in EVERY studied dimension move points
 // (frac_unmoved <= 1%, median/RMS displacement >= 0.5) and beat jitter at equal RMS displacement in
 // both nn_q01 and nn_min, take the one with the largest geometric mean over dimensions of
 // nn_q01(CNJ) / nn_q01(jitter at equal neighbour disorder): the comparison that does not reward moving
-// neighbours together (a translation scores zero disorder). nullopt when no pair qualifies.
+// neighbours together (a translation scores zero disorder). nullopt when no cell qualifies.
 struct CnjDefaultsChoice {
   double frequency = 0.0;
   double step_scale = 0.0;
+  int steps = 1;
   double score = 0.0;  // the geometric mean above
 };
 std::optional<CnjDefaultsChoice> choose_cnj_defaults(const CnjStudyResult& result);

@@ -2,6 +2,7 @@
 // and the reading.
 #include "reproduce/cnj_study.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "sampling/curl_noise_jitter.hpp"
@@ -12,12 +13,20 @@
 namespace dfvn {
 namespace {
 
+// The study traces the free field, whose default step count is the drop mode's.
+int free_field_steps() {
+  CnjOptions options;
+  options.domain_mode = DomainMode::drop;
+  return cnj_steps(options);
+}
+
 CnjStudyResult reduced_study() {
   CnjStudyConfig config;
   config.dimensions = {3};
   config.seeds = 1;
   config.frequencies = {CnjOptions{}.frequency, 1.0};  // the default, and a high frequency
   config.step_scales = {CnjOptions{}.step_scale};
+  config.steps = {free_field_steps()};
   return run_cnj_study(config);
 }
 
@@ -83,6 +92,7 @@ TEST(CnjStudy, ReadingCallsDifferencesWithinTwoStandardErrorsATie) {
   result.config.bases = {NoiseBasis::turning_bands};
   result.config.frequencies = {CnjOptions{}.frequency};
   result.config.step_scales = {CnjOptions{}.step_scale};
+  result.config.steps = {free_field_steps()};
   const double cnj_min[] = {0.5, 0.3, 0.42}, jitter_min[] = {0.4, 0.4, 0.4};
   for (int seed = 0; seed < 3; ++seed) {
     CnjStudyRow r;
@@ -90,6 +100,7 @@ TEST(CnjStudy, ReadingCallsDifferencesWithinTwoStandardErrorsATie) {
     r.basis = NoiseBasis::turning_bands;
     r.frequency = CnjOptions{}.frequency;
     r.step_scale = CnjOptions{}.step_scale;
+    r.steps = free_field_steps();
     r.seed = static_cast<std::uint64_t>(seed + 1);
     r.rms_displacement = 0.6;
     r.median_over_rms = 0.8;
@@ -113,6 +124,7 @@ TEST(CnjStudy, PaperLatticeDropsLeavingPointsAndCountsThem) {
   config.bases = {kDefaultNoiseBasis};
   config.frequencies = {CnjOptions{}.frequency};
   config.step_scales = {CnjOptions{}.step_scale};
+  config.steps = {free_field_steps()};
   const CnjStudyResult result = run_cnj_study(config);
   ASSERT_EQ(result.rows.size(), 1u);
   const CnjStudyRow& r = result.rows.front();
@@ -139,6 +151,46 @@ TEST(CnjStudy, RejectsBadConfigurations) {
   config.dimensions = {2};  // Table 1 has 3D..7D
   EXPECT_THROW(config.validate(), std::invalid_argument);
   EXPECT_THROW(parse_study_lattice("cube"), std::invalid_argument);
+  config.lattice = StudyLattice::interior;
+  config.dimensions = {3};
+  config.steps = {1, 0};
+  EXPECT_THROW(config.validate(), std::invalid_argument);
+  config.steps = {};
+  EXPECT_THROW(config.validate(), std::invalid_argument);
+}
+
+// Step counts are a dimension of the grid: each run traces with its own M, the cells and the reading
+// tell them apart, and the rule's choice names one.
+TEST(CnjStudy, StudiesStepCountsAsCells) {
+  CnjStudyConfig config;
+  config.lattice = StudyLattice::paper;
+  config.dimensions = {3};
+  config.seeds = 1;
+  config.bases = {kDefaultNoiseBasis};
+  config.frequencies = {CnjOptions{}.frequency};
+  config.step_scales = {CnjOptions{}.step_scale};
+  config.steps = {1, 4};
+  const CnjStudyResult result = run_cnj_study(config);
+  ASSERT_EQ(result.rows.size(), 2u);
+  EXPECT_EQ(result.rows[0].steps, 1);
+  EXPECT_EQ(result.rows[1].steps, 4);
+  // The same field and trace time: one step and four land apart, but not far apart.
+  EXPECT_NE(result.rows[0].rms_displacement, result.rows[1].rms_displacement);
+  EXPECT_NEAR(result.rows[0].rms_displacement, result.rows[1].rms_displacement,
+              0.2 * result.rows[1].rms_displacement);
+  const std::string md = cnj_study_markdown(result);
+  EXPECT_NE(md.find("M = 1, 4 RK4 steps"), std::string::npos) << md;
+  EXPECT_NE(md.find("frequency / step scale / steps in brackets"), std::string::npos) << md;
+  EXPECT_NE(md.find(fmt::format("| 3 | turning-bands | {:g} | {:g} | 1 | ", config.frequencies[0], config.step_scales[0])),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find(fmt::format("| 3 | turning-bands | {:g} | {:g} | 4 | ", config.frequencies[0], config.step_scales[0])),
+            std::string::npos)
+      << md;
+  const auto choice = choose_cnj_defaults(result);
+  if (choice) {
+    EXPECT_TRUE(choice->steps == 1 || choice->steps == 4);
+  }
 }
 
 }  // namespace
