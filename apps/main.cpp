@@ -603,11 +603,11 @@ struct ReproduceCommand {
     CLI::App* s = cmd->add_subcommand(
         "cnj-study",
         "CNJ (each noise basis) against random jitter over noise frequencies 0.1, 0.2, 0.35, 0.5, 1 cycles per\n"
-        "spacing and step scales 0.2, 0.35, 0.5 (one integration step unless --steps), compared at equal RMS\n"
-        "displacement, neighbour disorder and lattice order (--lattice interior: interior points of a K^N lattice,\n"
-        "nothing dropped; --lattice paper: Table 1's lattice, points leaving [0,1]^N dropped as the paper does).\n"
-        "Writes DIR/cnj_study.csv,\n"
-        "DIR/cnj_study_jitter.csv, DIR/cnj_study.md and (with gnuplot) DIR/cnj_study.png; prints the Markdown as plain text.\n"
+        "spacing, step scales 0.2, 0.35, 0.5 and 1 or 2 integration steps, compared at equal RMS displacement,\n"
+        "neighbour disorder and lattice order (--lattice interior: interior points of a K^N lattice, nothing\n"
+        "dropped; --lattice paper: Table 1's lattice, points leaving [0,1]^N dropped as the paper does). Writes\n"
+        "DIR/cnj_study.csv, DIR/cnj_study_jitter.csv, DIR/cnj_study.md and (with gnuplot) DIR/cnj_study.png;\n"
+        "prints the Markdown as plain text.\n"
         "The CNJ defaults come from this study's rule (data/cnj_defaults.md).");
     s->add_option("--out", study.out_dir, "Output directory")->capture_default_str();
     s->add_option("--dims", study_dims, "Dimensions: a range or list within 3..7, e.g. 3-7 or 3,5")->capture_default_str();
@@ -628,7 +628,7 @@ struct ReproduceCommand {
         ->capture_default_str();
     s->add_option("--steps", study.steps,
                   "Comma list of integration steps M per trace (RK4 steps of t / M, each followed by the\n"
-                  "reprojection; Section 5.1 takes 1)")
+                  "reprojection; Section 5.1 takes 1, the free field's default is 2)")
         ->delimiter(',')
         ->capture_default_str()
         ->check(CLI::Range(1, dfvn::kMaxStudySteps));

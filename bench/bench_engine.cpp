@@ -61,7 +61,8 @@ void BM_Field(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
-// One CNJ point: one RK4 step with Gauss-Newton reprojection (the default).
+// One CNJ point of the main job: one RK4 step with Gauss-Newton reprojection (TraceOptions's default,
+// and conformant CNJ's).
 template <int N>
 void BM_Rk4GaussNewtonStep(benchmark::State& state) {
   const NoiseBasis basis = kAllNoiseBases[state.range(0)];
@@ -93,7 +94,7 @@ DFVN_BENCH_ALL_DIMENSIONS(BM_Field, ->DenseRange(0, kLastBasis));
 DFVN_BENCH_ALL_DIMENSIONS(BM_Rk4GaussNewtonStep, ->DenseRange(0, kLastBasis));
 
 // CNJ on the 6^7 paper lattice (279,936 points), all threads, default basis: the 2 s target.
-// The paper's protocol: the free field, points that leave [0,1]^N dropped.
+// The paper's protocol: the free field, points that leave [0,1]^N dropped (kDropModeSteps RK4 steps).
 void BM_CnjPaper7D(benchmark::State& state) {
   const LatticeSpec lattice{7, 6, Protocol::paper};
   CnjOptions options;
