@@ -352,10 +352,12 @@ struct SampleCommand {
         ->capture_default_str()
         ->check(CLI::IsMember({"euler", "rk4"}));
     cmd->add_option("--steps", config.cnj.trace.steps,
-                    "CNJ integration steps M (RK4 steps of t / M, each followed by the reprojection); 0 = the\n"
-                    "domain mode's: 1 conformant, 2 drop (data/cnj_defaults.md)")
+                    fmt::format("CNJ integration steps M (steps of t / M, each followed by the reprojection); 0 = the\n"
+                                "domain mode's: 1 conformant (and --on sphere), {} drop (data/cnj_defaults.md,\n"
+                                "data/cnj_steps_main_job.md)",
+                                dfvn::kDropModeSteps))
         ->capture_default_str()
-        ->check(CLI::Range(0, 1 << 20));
+        ->check(CLI::Range(0, dfvn::CnjOptions::kMaxSteps));
     cmd->add_option("--step-scale", config.cnj.step_scale,
                     "CNJ trace time t = C * dbar(N) * lattice spacing, dbar the mean distance to the 3^N-1 "
                     "lattice neighbours (Section 5.1); RMS |c| = 1, so t is the RMS move; at most 2^20")
@@ -602,13 +604,15 @@ struct ReproduceCommand {
 
     CLI::App* s = cmd->add_subcommand(
         "cnj-study",
-        "CNJ (each noise basis) against random jitter over noise frequencies 0.1, 0.2, 0.35, 0.5, 1 cycles per\n"
-        "spacing, step scales 0.2, 0.35, 0.5 and 1 or 2 integration steps, compared at equal RMS displacement,\n"
-        "neighbour disorder and lattice order (--lattice interior: interior points of a K^N lattice, nothing\n"
-        "dropped; --lattice paper: Table 1's lattice, points leaving [0,1]^N dropped as the paper does). Writes\n"
-        "DIR/cnj_study.csv, DIR/cnj_study_jitter.csv, DIR/cnj_study.md and (with gnuplot) DIR/cnj_study.png;\n"
-        "prints the Markdown as plain text.\n"
-        "The CNJ defaults come from this study's rule (data/cnj_defaults.md).");
+        fmt::format(
+            "CNJ (each noise basis) against random jitter over noise frequencies 0.1, 0.2, 0.35, 0.5, 1 cycles per\n"
+            "spacing, step scales 0.2, 0.35, 0.5 and 1 or {} integration steps, compared at equal RMS displacement,\n"
+            "neighbour disorder and lattice order (--lattice interior: interior points of a K^N lattice, nothing\n"
+            "dropped; --lattice paper: Table 1's lattice, points leaving [0,1]^N dropped as the paper does). Writes\n"
+            "DIR/cnj_study.csv, DIR/cnj_study_jitter.csv, DIR/cnj_study.md and (with gnuplot) DIR/cnj_study.png;\n"
+            "prints the Markdown as plain text.\n"
+            "The CNJ defaults come from this study's rule (data/cnj_defaults.md).",
+            dfvn::kDropModeSteps));
     s->add_option("--out", study.out_dir, "Output directory")->capture_default_str();
     s->add_option("--dims", study_dims, "Dimensions: a range or list within 3..7, e.g. 3-7 or 3,5")->capture_default_str();
     s->add_option("--seeds", study.seeds, "Seeds per cell (--seed, --seed + 1, ...)")
@@ -627,11 +631,12 @@ struct ReproduceCommand {
         ->delimiter(',')
         ->capture_default_str();
     s->add_option("--steps", study.steps,
-                  "Comma list of integration steps M per trace (RK4 steps of t / M, each followed by the\n"
-                  "reprojection; Section 5.1 takes 1, the free field's default is 2)")
+                  fmt::format("Comma list of integration steps M per trace (RK4 steps of t / M, each followed by\n"
+                              "the reprojection; Section 5.1 takes 1, the free field's default is {})",
+                              dfvn::kDropModeSteps))
         ->delimiter(',')
         ->capture_default_str()
-        ->check(CLI::Range(1, dfvn::kMaxStudySteps));
+        ->check(CLI::Range(1, dfvn::CnjOptions::kMaxSteps));
     progress.add_to(*s);
     add_common_options(*s, common3);
     s->callback([this] { run_cnj_study(); });

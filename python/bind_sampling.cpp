@@ -119,8 +119,7 @@ digit-permuted Halton (False: neither). radius, ncandidates: Poisson disk radius
 candidates per point. noise, frequency (cycles per lattice spacing), step_scale, integrator,
 reprojection, steps: CNJ's options, defaults as the command line's. cnj keeps every point in [0,1]^dim
 (the field bounded by the cube, Eq. 13, as the command line's default), so steps 0 (the domain mode's
-count) means 1. threads: 0 = all cores (the
-result never depends on it).)");
+count) means 1. threads: 0 = all cores (the result never depends on it).)");
 }
 
 }  // namespace dfvn::python

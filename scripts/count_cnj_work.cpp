@@ -1,4 +1,5 @@
-// The work of one CNJ point in 7D (one RK4 step + Gauss-Newton reprojection on the 6^7 paper lattice):
+// The work of one CNJ point in 7D (one RK4 step + Gauss-Newton reprojection on the 6^7 paper lattice: the
+// main job's step count, traced in the free field; drop mode's default of two steps costs about twice):
 // traces the first `points` lattice points on one thread and prints the field evaluations and
 // reprojection updates per point, and the arithmetic floor those need. scripts/count_cnj_work.sh runs
 // it under callgrind at two sizes; the difference in instructions / difference in points is the

@@ -79,7 +79,7 @@ std::string sampling_json(const SampleConfig& config, const std::vector<Sampling
   parameters["statistics"] = config.compute_statistics;
   parameters["cnj"] = {{"noise", to_string(config.cnj.noise)},
                        {"integrator", to_string(config.cnj.trace.integrator)},
-                       {"steps", cnj_steps(config.cnj)},
+                       {"steps", cnj_steps(config.on == Surface::sphere ? sphere_cnj_options(config.cnj) : config.cnj)},
                        {"step_scale", config.cnj.step_scale},
                        {"frequency", config.cnj.frequency},
                        {"frequency_unit", "cycles per lattice spacing"},

@@ -42,8 +42,19 @@ void CnjStudyConfig::validate() const {
   for (double c : step_scales)
     if (!std::isfinite(c) || !(c > 0.0)) throw std::invalid_argument("study step scales must be finite and positive");
   for (int m : steps)
-    if (m < 1 || m > kMaxStudySteps)
-      throw std::invalid_argument(fmt::format("--steps must be in 1..{}, got {}", kMaxStudySteps, m));
+    if (m < 1 || m > CnjOptions::kMaxSteps)
+      throw std::invalid_argument(fmt::format("--steps must be in 1..{}, got {}", CnjOptions::kMaxSteps, m));
+  // A value named twice would put two copies of the same runs in one cell and halve its variance.
+  auto refuse_repeats = [](const auto& values, const char* option) {
+    for (std::size_t i = 0; i < values.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if (values[i] == values[j]) throw std::invalid_argument(fmt::format("{} names a value twice", option));
+  };
+  refuse_repeats(dimensions, "--dims");
+  refuse_repeats(bases, "--noises");
+  refuse_repeats(frequencies, "--frequencies");
+  refuse_repeats(step_scales, "--step-scales");
+  refuse_repeats(steps, "--steps");
 }
 
 int cnj_study_grid(int dimension) {
@@ -166,49 +177,51 @@ CnjStudyResult run_cnj_study(const CnjStudyConfig& config, const StageProgress& 
       for (double frequency : config.frequencies)
         for (double step_scale : config.step_scales)
           for (int steps : config.steps)
-          for (int s = 0; s < config.seeds; ++s) {
-            if (progress) progress(stage, static_cast<double>(done++) / static_cast<double>(runs_per_dimension));
-            CnjStudyRow row;
-            row.dimension = n;
-            row.grid = lattice.grid;
-            row.basis = basis;
-            row.frequency = frequency;
-            row.step_scale = step_scale;
-            row.steps = steps;
-            row.seed = config.seed + static_cast<std::uint64_t>(s);
-            CnjOptions options;
-            options.noise = basis;
-            options.frequency = frequency;
-            options.step_scale = step_scale;
-            options.trace.steps = steps;
-            options.domain_mode = DomainMode::drop;  // the free field: the study measures interior packing
-            const CnjResult cnj = curl_noise_jitter(lattice, options, row.seed, config.threads);
-            // Every traced point, inside [0,1]^N or not: x = site + displacement.
-            PointSet moved{n, cnj.displacements, Box{0.0, 1.0}};
-            std::vector<double> site(static_cast<std::size_t>(n));
-            for (std::size_t i = 0; i < moved.size(); ++i) {
-              lattice.point(i, site.data());
-              for (int j = 0; j < n; ++j) moved.coordinates[i * n + j] += site[j];
+            for (int s = 0; s < config.seeds; ++s) {
+              if (progress) progress(stage, static_cast<double>(done++) / static_cast<double>(runs_per_dimension));
+              CnjStudyRow row;
+              row.dimension = n;
+              row.grid = lattice.grid;
+              row.basis = basis;
+              row.frequency = frequency;
+              row.step_scale = step_scale;
+              row.steps = steps;
+              row.seed = config.seed + static_cast<std::uint64_t>(s);
+              CnjOptions options;
+              options.noise = basis;
+              options.frequency = frequency;
+              options.step_scale = step_scale;
+              options.trace.steps = steps;
+              options.domain_mode = DomainMode::drop;  // the free field: the study measures interior packing
+              const CnjResult cnj = curl_noise_jitter(lattice, options, row.seed, config.threads);
+              // Every traced point, inside [0,1]^N or not: x = site + displacement.
+              PointSet moved{n, cnj.displacements, Box{0.0, 1.0}};
+              std::vector<double> site(static_cast<std::size_t>(n));
+              for (std::size_t i = 0; i < moved.size(); ++i) {
+                lattice.point(i, site.data());
+                for (int j = 0; j < n; ++j) moved.coordinates[i * n + j] += site[j];
+              }
+              const LatticeDisplacementSummary d =
+                  summarize_lattice_displacements(n, lattice.grid, a, cnj.displacements);
+              row.rms_displacement = d.rms / a;
+              row.median_over_rms = d.rms > 0.0 ? d.median / d.rms : 0.0;
+              row.fraction_unmoved = d.fraction_unmoved;
+              row.neighbour_disorder = d.neighbour_disorder;
+              row.lattice_order = d.lattice_order;
+              row.skipped_update_fraction =
+                  static_cast<double>(cnj.trace_stats.skipped_updates) / static_cast<double>(moved.size());
+              row.cnj = packing(moved);
+              if (paper)
+                row.dropped_fraction = 1.0 - static_cast<double>(inside_unit_cube(moved).size()) /
+                                                 static_cast<double>(moved.size());
+              row.h_rms = row.rms_displacement * std::sqrt(3.0 / n);
+              row.h_disorder = row.neighbour_disorder / std::sqrt(2.0 * n / 3.0);
+              row.h_order = jitter_half_width_for_order(row.lattice_order);
+              row.jitter_rms = jitter_packing(lattice, row.h_rms, row.seed, packing);
+              row.jitter_disorder = jitter_packing(lattice, row.h_disorder, row.seed, packing);
+              row.jitter_order = jitter_packing(lattice, row.h_order, row.seed, packing);
+              result.rows.push_back(row);
             }
-            const LatticeDisplacementSummary d = summarize_lattice_displacements(n, lattice.grid, a, cnj.displacements);
-            row.rms_displacement = d.rms / a;
-            row.median_over_rms = d.rms > 0.0 ? d.median / d.rms : 0.0;
-            row.fraction_unmoved = d.fraction_unmoved;
-            row.neighbour_disorder = d.neighbour_disorder;
-            row.lattice_order = d.lattice_order;
-            row.skipped_update_fraction =
-                static_cast<double>(cnj.trace_stats.skipped_updates) / static_cast<double>(moved.size());
-            row.cnj = packing(moved);
-            if (paper)
-              row.dropped_fraction = 1.0 - static_cast<double>(inside_unit_cube(moved).size()) / static_cast<double>(moved.size());
-            row.h_rms = row.rms_displacement * std::sqrt(3.0 / n);
-            row.h_disorder = row.neighbour_disorder / std::sqrt(2.0 * n / 3.0);
-            row.h_order = jitter_half_width_for_order(row.lattice_order);
-            row.jitter_rms = jitter_packing(lattice, row.h_rms, row.seed, packing);
-            row.jitter_disorder = jitter_packing(lattice, row.h_disorder, row.seed, packing);
-            row.jitter_order = jitter_packing(lattice, row.h_order, row.seed, packing);
-            result.rows.push_back(row);
-          }
     for (double h : {0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.45, 0.5, 0.6, 0.7}) {
       JitterCurvePoint p;
       p.dimension = n;
@@ -341,21 +354,21 @@ std::optional<CnjDefaultsChoice> choose_cnj_defaults(const CnjStudyResult& resul
   std::optional<CnjDefaultsChoice> best;
   for (double f : result.config.frequencies)
     for (double c : result.config.step_scales)
-    for (int m : result.config.steps) {
-      bool qualifies = true;
-      double log_sum = 0.0;
-      for (int n : result.config.dimensions) {
-        const CellMean* cell = find_cell(cells, n, kDefaultNoiseBasis, f, c, m);
-        if (!cell || !moves_points(*cell) || !beats_jitter_at_equal_rms(*cell)) {
-          qualifies = false;
-          break;
+      for (int m : result.config.steps) {
+        bool qualifies = true;
+        double log_sum = 0.0;
+        for (int n : result.config.dimensions) {
+          const CellMean* cell = find_cell(cells, n, kDefaultNoiseBasis, f, c, m);
+          if (!cell || !moves_points(*cell) || !beats_jitter_at_equal_rms(*cell)) {
+            qualifies = false;
+            break;
+          }
+          log_sum += std::log(cell->q01_vs_disorder);
         }
-        log_sum += std::log(cell->q01_vs_disorder);
+        if (!qualifies) continue;
+        const double score = std::exp(log_sum / static_cast<double>(result.config.dimensions.size()));
+        if (!best || score > best->score) best = CnjDefaultsChoice{f, c, m, score};
       }
-      if (!qualifies) continue;
-      const double score = std::exp(log_sum / static_cast<double>(result.config.dimensions.size()));
-      if (!best || score > best->score) best = CnjDefaultsChoice{f, c, m, score};
-    }
   return best;
 }
 
@@ -399,7 +412,8 @@ std::string cnj_study_markdown(const CnjStudyResult& result) {
   // The answers, per dimension: the library defaults, then the best cell of each comparison.
   md += "## Answers per dimension\n\n";
   md += fmt::format(
-      "For the library defaults ({} noise, frequency {:g} cycles per spacing, step scale {:g}, {} integration step{}):\n\n",
+      "For the library defaults ({} noise, frequency {:g} cycles per spacing, step scale {:g}, {} integration "
+      "step{}):\n\n",
       to_string(defaults.noise), defaults.frequency, defaults.step_scale, default_steps,
       default_steps == 1 ? "" : "s");
   md += "| n | RMS move | median/RMS | unmoved | dropped | q01 vs jitter at equal RMS | nn_min vs jitter at equal RMS | "

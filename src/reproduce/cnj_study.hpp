@@ -1,6 +1,6 @@
 // The CNJ study: curl noise jittering (each noise basis) against random jitter over a grid of noise
-// frequencies, step scales and integration step counts, compared at equal RMS displacement, equal neighbour disorder and equal
-// lattice order. It chooses the CNJ defaults (CnjOptions) by a stated rule.
+// frequencies, step scales and integration step counts, compared at equal RMS displacement, equal
+// neighbour disorder and equal lattice order. It chooses the CNJ defaults (CnjOptions) by a stated rule.
 #pragma once
 
 #include <cstdint>
@@ -24,8 +24,6 @@ namespace dfvn {
 enum class StudyLattice { interior, paper };
 std::string_view to_string(StudyLattice lattice);
 StudyLattice parse_study_lattice(std::string_view name);  // throws std::invalid_argument
-
-inline constexpr int kMaxStudySteps = 1 << 20;  // the CLI's --steps bound
 
 struct CnjStudyConfig {
   StudyLattice lattice = StudyLattice::interior;

@@ -101,6 +101,8 @@ Table1Result run_table1(const Table1Config& config, const StageProgress& progres
       SampleConfig paper_construction = realization;
       paper_construction.methods = {Method::cnj};
       paper_construction.cnj.noise = NoiseBasis::simplex;
+      // Section 5.1 traces one RK4 step; a count the user chose is kept.
+      if (paper_construction.cnj.trace.steps == CnjOptions::kStepsByDomainMode) paper_construction.cnj.trace.steps = 1;
       paper_construction.compute_rdf = false;
       result.simplex_cnj.back().push_back(run_sampling(paper_construction, false, [&](std::string_view stage, double f) {
         if (progress) progress(fmt::format("{} simplex {}", name, stage), f);

@@ -157,9 +157,9 @@ std::string table1_markdown(const Table1Result& result) {
     md += "- **Which construction moves the points** (\"unmoved\": less than 1% of a spacing; moves in lattice "
           "spacings, over every traced point, first realization): " + moved + ".";
     if (!dimensions_from(result, 4).empty())
-      md += " The paper's construction (simplex noise, C2 kernel, one shared traversal) leaves a field that is nearly "
-            "still in most of space from 4D on, so most of its points stay on their lattice sites and a few move far; "
-            "ours moves every point by a comparable amount.";
+      md += " The paper's construction (simplex noise, C2 kernel, one shared traversal, one RK4 step unless --steps) "
+            "leaves a field that is nearly still in most of space from 4D on, so most of its points stay on their "
+            "lattice sites and a few move far; ours moves every point by a comparable amount.";
     md += "\n";
   }
   const bool has6 = has_dimension(result, 6), has7 = has_dimension(result, 7);

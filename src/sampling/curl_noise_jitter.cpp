@@ -52,8 +52,8 @@ void CnjOptions::validate() const {
   if (!(boundary_width > 0.0 && boundary_width <= 1e6))
     throw std::invalid_argument(fmt::format("boundary width must be in (0, 1e6] lattice spacings, got {:g}", boundary_width));
   // Refinements double the steps kMaxRefinements times: keep that an int.
-  if (domain_mode == DomainMode::conformant && cnj_steps(*this) > (1 << 20))
-    throw std::invalid_argument(fmt::format("conformant CNJ takes at most 2^20 steps, got {}", cnj_steps(*this)));
+  if (cnj_steps(*this) > kMaxSteps)
+    throw std::invalid_argument(fmt::format("CNJ takes at most 2^20 steps, got {}", cnj_steps(*this)));
 }
 
 double cnj_transition_width(const CnjOptions& options, const LatticeSpec& lattice) {

@@ -32,6 +32,9 @@ struct CnjOptions {
   // takes the domain mode's step count, cnj_steps(): kDropModeSteps for drop, 1 for conformant.
   static constexpr int kStepsByDomainMode = 0;
   TraceOptions trace{.steps = kStepsByDomainMode};
+  // At most this many steps: conformant refinements double them kMaxRefinements times, which must stay
+  // an int.
+  static constexpr int kMaxSteps = 1 << 20;
   // Trace time t = step_scale * dbar(N) * spacing (Section 5.1: proportional to the average
   // neighbour distance). |c| has RMS 1, so t is also the RMS length of a one-step move.
   // Noise frequency in cycles per lattice spacing (FieldOptions::frequency): the field's frequency is
@@ -64,15 +67,14 @@ struct CnjOptions {
   void validate() const;  // throws std::invalid_argument naming the option
 };
 
-// The integration steps M when CnjOptions::trace.steps is kStepsByDomainMode, chosen by the CNJ study
-// (data/cnj_defaults.md, data/cnj_paper_lattice.md):
-//  drop (the free field): 2. One RK4 step over the default trace time does not follow the flow from
-//    5D on: on the paper's 7D lattice its minimum NN distance is 0.210 spacings, against 0.259 with 2
-//    steps and 0.257 with 4 (10 seeds), and CNJ's nn_min only ties with jitter's at equal RMS
-//    displacement; with 2 steps it beats it in every dimension 3-7.
+// The integration steps M when CnjOptions::trace.steps is kStepsByDomainMode:
+//  drop (the free field): 2, the choice of the CNJ study's rule (data/cnj_defaults.md). One RK4 step
+//    over the default trace time does not follow the flow from 5D on: on the paper's 7D lattice
+//    (data/cnj_paper_lattice.md, 10 seeds) its mean minimum NN distance is 0.210 spacings against
+//    0.259 with 2 steps, and CNJ's nn_min only ties with jitter's at equal RMS displacement; with 2
+//    steps it beats it in every dimension 3-7.
 //  conformant: 1. In the bounded field the closest pairs form at the walls, and more steps pack worse
-//    there (7D main job, seeds 1-5: nn_q01 lower in 5 of 5 seeds with 2 steps, nn_min in 4 of 5)
-//    while the CNJ stage takes 30-60% longer.
+//    there while the CNJ stage takes longer (data/cnj_steps_main_job.md: the 7D main job, seeds 1-5).
 inline constexpr int kDropModeSteps = 2;
 int cnj_steps(const CnjOptions& options);
 // options.trace with its steps resolved (cnj_steps).

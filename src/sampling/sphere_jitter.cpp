@@ -49,8 +49,9 @@ PointSet sphere_start_set(int dimension, int grid) {
 }
 
 template <int N>
-static SphereCnjResult sphere_curl_noise_jitter(int grid, const CnjOptions& options, std::uint64_t seed, int threads,
-                                                const FractionProgress& progress) {
+static SphereCnjResult sphere_curl_noise_jitter(int grid, const CnjOptions& requested, std::uint64_t seed,
+                                                int threads, const FractionProgress& progress) {
+  const CnjOptions options = sphere_cnj_options(requested);
   options.validate();
   const double h = sphere_start_spacing(grid);
   SphereCnjResult result;
@@ -59,12 +60,8 @@ static SphereCnjResult sphere_curl_noise_jitter(int grid, const CnjOptions& opti
   const DfvnField<N> field(seed, FieldOptions{options.noise, result.field_frequency, FieldConstraint::on_sphere});
   const PointSet starts = sphere_start_set(N, grid);
   std::vector<double> ends(starts.coordinates.size());
-  // Every trace is bound to the sphere and refined when it ends off it, as in a conformant domain:
-  // the conformant step count, whatever the domain mode says.
-  CnjOptions bound = options;
-  bound.domain_mode = DomainMode::conformant;
   const TracedPoints traced = trace_table<N>(
-      field, cnj_trace_options(bound), starts.coordinates.data(), starts.size(), ends.data(), result.trace_time,
+      field, cnj_trace_options(options), starts.coordinates.data(), starts.size(), ends.data(), result.trace_time,
       [](const Vec<N>& x) { return satisfies_constraint<N>(FieldConstraint::on_sphere, x); }, OnReject::retrace,
       threads, progress);
   double total_squared_displacement = 0.0;  // in index order
@@ -80,6 +77,12 @@ static SphereCnjResult sphere_curl_noise_jitter(int grid, const CnjOptions& opti
   result.trace_stats = traced.stats;
   if (progress) progress(1.0);
   return result;
+}
+
+CnjOptions sphere_cnj_options(const CnjOptions& options) {
+  CnjOptions bound = options;
+  bound.domain_mode = DomainMode::conformant;
+  return bound;
 }
 
 SphereCnjResult sphere_curl_noise_jitter(int dimension, int grid, const CnjOptions& options, std::uint64_t seed,

@@ -37,8 +37,13 @@ struct SphereCnjResult {
   TraceStats trace_stats;
 };
 
-// Every start point traced along the field with f_1 = |x|^2 and the N-2 other functions noise; the
-// options' domain settings are not used. Throws std::invalid_argument for N < 3.
+// The options the sphere traces with: `options` in conformant mode. Every trace is bound to the sphere
+// and refined when it ends off it, as in a conformant domain, so it takes the conformant step count
+// whatever the domain mode says.
+CnjOptions sphere_cnj_options(const CnjOptions& options);
+
+// Every start point traced along the field with f_1 = |x|^2 and the N-2 other functions noise, with
+// sphere_cnj_options(options); their domain settings are not used. Throws std::invalid_argument for N < 3.
 SphereCnjResult sphere_curl_noise_jitter(int dimension, int grid, const CnjOptions& options, std::uint64_t seed,
                                          int threads, const FractionProgress& progress = {});
 

@@ -100,6 +100,12 @@ assert results["cnj"]["generation"]["dropped"] == int(rows["cnj"]["dropped"])
 assert results["pds"]["generation"]["saturated"] in (True, False)
 assert "summary" not in run
 PY
+# The JSON names the step count CNJ traced with: 0 resolves by domain mode, and the sphere traces as conformant.
+json_steps() { "$bin" -q --methods cnj --json - -o /dev/null "$@" | $python -c 'import json, sys; print(json.load(sys.stdin)["parameters"]["cnj"]["steps"])'; }
+[ "$(json_steps -d 3 --grid 4)" = 1 ] && [ "$(json_steps -d 3 --grid 4 --domain-mode drop)" = 2 ] &&
+  [ "$(json_steps -d 3 --grid 4 --domain-mode drop --steps 3)" = 3 ] &&
+  [ "$(json_steps -d 3 --grid 4 --on sphere --domain-mode drop)" = 1 ] &&
+  ok || bad "json steps: the resolved step count"
 "$bin" -d 2 --grid 5 -q --methods jitter --realizations 3 --json "$work/real.json" -o /dev/null &&
   $python -c 'import json, sys; s = json.load(open(sys.argv[1]))["summary"]["jitter"]; assert s["nearest_neighbour.median"]["sd"] > 0, s' "$work/real.json" &&
   ok || bad "json summary over realizations"

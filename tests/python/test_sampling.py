@@ -71,6 +71,13 @@ def test_poisson_disk_gives_n_points_or_warns_that_it_saturated():
     assert distance.min() >= 0.2
 
 
+def test_cnj_steps_zero_is_the_conformant_count_of_one():
+    one = dfvn.sample("cnj", 3, grid=5, steps=1)
+    np.testing.assert_array_equal(dfvn.sample("cnj", 3, grid=5, steps=0), one)
+    np.testing.assert_array_equal(dfvn.sample("cnj", 3, grid=5), one)
+    assert not np.array_equal(dfvn.sample("cnj", 3, grid=5, steps=2), one)
+
+
 def test_same_seed_same_bits_other_seed_other_points_any_threads():
     a = dfvn.sample("cnj", 4, grid=5, seed=1, threads=1)
     np.testing.assert_array_equal(a, dfvn.sample("cnj", 4, grid=5, seed=1, threads=3))

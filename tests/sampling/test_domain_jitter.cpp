@@ -151,6 +151,20 @@ TEST(SphereJitter, EveryPointStaysOnTheSphere) {
     }
 }
 
+// The sphere traces as a conformant domain whatever the domain mode says: the same points, one step.
+TEST(SphereJitter, TracesAsConformantInEveryDomainMode) {
+  CnjOptions drop;
+  drop.domain_mode = DomainMode::drop;
+  EXPECT_EQ(sphere_cnj_options(drop).domain_mode, DomainMode::conformant);
+  EXPECT_EQ(cnj_steps(sphere_cnj_options(drop)), 1);
+  const SphereCnjResult a = sphere_curl_noise_jitter(4, 6, drop, 2, 2);
+  const SphereCnjResult b = sphere_curl_noise_jitter(4, 6, CnjOptions{}, 2, 2);
+  EXPECT_EQ(a.points.coordinates, b.points.coordinates);
+  // A step count the domain mode does not bound is still bounded on the sphere, which refines it.
+  drop.trace.steps = CnjOptions::kMaxSteps + 1;
+  EXPECT_THROW(sphere_curl_noise_jitter(4, 6, drop, 2, 2), std::invalid_argument);
+}
+
 TEST(SphereJitter, GeodesicNearestNeighboursEqualBruteForce) {
   for (int dimension = 3; dimension <= 8; ++dimension) {
     const SphereCnjResult r = sphere_curl_noise_jitter(dimension, dimension <= 5 ? 8 : 4, CnjOptions{}, 3, 2);

@@ -92,6 +92,20 @@ TEST(CurlNoiseJitter, StepsDefaultToTheDomainModesCount) {
   EXPECT_EQ(cnj_steps(o), 3);
   o.trace.steps = -1;
   EXPECT_THROW(o.validate(), std::invalid_argument);
+  o.trace.steps = CnjOptions::kMaxSteps;
+  EXPECT_NO_THROW(o.validate());
+  o.trace.steps = CnjOptions::kMaxSteps + 1;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  o.domain_mode = DomainMode::drop;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+}
+
+// The default in conformant mode is the one-step trace, bit for bit.
+TEST(CurlNoiseJitter, ConformantDefaultIsOneStep) {
+  const LatticeSpec l{4, 5, Protocol::paper};
+  CnjOptions one;
+  one.trace.steps = 1;
+  EXPECT_EQ(curl_noise_jitter(l, CnjOptions{}, 3, 2).points.coordinates, curl_noise_jitter(l, one, 3, 2).points.coordinates);
 }
 
 // The default in drop mode is the trace with kDropModeSteps steps, bit for bit, and not the one-step trace.
