@@ -20,6 +20,7 @@
 #include "core/message_text.hpp"
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
+#include "core/repeats.hpp"
 #include "field/evaluate_points.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
@@ -425,10 +426,9 @@ struct SampleCommand {
     if (config.on == dfvn::Surface::sphere && methods_option->count() == 0) methods = "cnj,random";
     config.methods.clear();
     for (const auto& name : CLI::detail::split(methods, ',')) {
-      const dfvn::Method m = dfvn::parse_method(CLI::detail::trim_copy(name));
-      for (dfvn::Method seen : config.methods)
-        if (seen == m) throw std::invalid_argument("--methods names '" + std::string(dfvn::to_string(m)) + "' twice");
-      config.methods.push_back(m);
+      config.methods.push_back(dfvn::parse_method(CLI::detail::trim_copy(name)));
+      if (const auto repeat = dfvn::first_repeat(config.methods))  // before the next name is parsed, as it is read
+        throw std::invalid_argument("--methods names '" + std::string(dfvn::to_string(*repeat)) + "' twice");
     }
     if (count > 0) {
       config.count = count;

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "core/quantile.hpp"
+#include "core/repeats.hpp"
 #include "core/stopwatch.hpp"
 #include "io/atomic_file.hpp"
 #include "plot/gnuplot.hpp"
@@ -45,16 +46,14 @@ void CnjStudyConfig::validate() const {
     if (m < 1 || m > CnjOptions::kMaxSteps)
       throw std::invalid_argument(fmt::format("--steps must be in 1..{}, got {}", CnjOptions::kMaxSteps, m));
   // A value named twice would put two copies of the same runs in one cell and halve its variance.
-  auto refuse_repeats = [](const auto& values, const char* option) {
-    for (std::size_t i = 0; i < values.size(); ++i)
-      for (std::size_t j = 0; j < i; ++j)
-        if (values[i] == values[j]) throw std::invalid_argument(fmt::format("{} names a value twice", option));
-  };
-  refuse_repeats(dimensions, "--dims");
-  refuse_repeats(bases, "--noises");
-  refuse_repeats(frequencies, "--frequencies");
-  refuse_repeats(step_scales, "--step-scales");
-  refuse_repeats(steps, "--steps");
+  if (const auto d = first_repeat(dimensions)) throw std::invalid_argument(fmt::format("--dims names {} twice", *d));
+  if (const auto b = first_repeat(bases))
+    throw std::invalid_argument(fmt::format("--noises names {} twice", to_string(*b)));
+  if (const auto f = first_repeat(frequencies))
+    throw std::invalid_argument(fmt::format("--frequencies names {:g} twice", *f));
+  if (const auto c = first_repeat(step_scales))
+    throw std::invalid_argument(fmt::format("--step-scales names {:g} twice", *c));
+  if (const auto m = first_repeat(steps)) throw std::invalid_argument(fmt::format("--steps names {} twice", *m));
 }
 
 int cnj_study_grid(int dimension) {

@@ -10,6 +10,7 @@
 
 #include "core/machine.hpp"
 #include "core/message_text.hpp"
+#include "core/repeats.hpp"
 #include "core/stopwatch.hpp"
 #include "io/atomic_file.hpp"
 #include "plot/gnuplot.hpp"
@@ -56,9 +57,8 @@ std::vector<int> parse_dimension_list(std::string_view text) {
     if (comma == std::string_view::npos) break;
     start = comma + 1;
   }
-  for (std::size_t i = 0; i < dims.size(); ++i)
-    for (std::size_t j = 0; j < i; ++j)
-      if (dims[i] == dims[j]) throw std::invalid_argument(fmt::format("--dims names {} twice", dims[i]));
+  if (const auto repeat = first_repeat(dims))
+    throw std::invalid_argument(fmt::format("--dims names {} twice", *repeat));
   return dims;
 }
 
