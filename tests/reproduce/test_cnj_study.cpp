@@ -20,6 +20,20 @@ int free_field_steps() {
   return cnj_steps(options);
 }
 
+// One cell at the defaults on the paper's lattice: 3D, one seed, the default basis, frequency and step
+// scale, and the free field's step count.
+CnjStudyConfig one_paper_lattice_cell() {
+  CnjStudyConfig config;
+  config.lattice = StudyLattice::paper;
+  config.dimensions = {3};
+  config.seeds = 1;
+  config.bases = {kDefaultNoiseBasis};
+  config.frequencies = {CnjOptions{}.frequency};
+  config.step_scales = {CnjOptions{}.step_scale};
+  config.steps = {free_field_steps()};
+  return config;
+}
+
 CnjStudyResult reduced_study() {
   CnjStudyConfig config;
   config.dimensions = {3};
@@ -117,15 +131,7 @@ TEST(CnjStudy, ReadingCallsDifferencesWithinTwoStandardErrorsATie) {
 
 // The paper's lattice: Table 1's K, leaving points dropped and counted, the same rule for the jitter.
 TEST(CnjStudy, PaperLatticeDropsLeavingPointsAndCountsThem) {
-  CnjStudyConfig config;
-  config.lattice = StudyLattice::paper;
-  config.dimensions = {3};
-  config.seeds = 1;
-  config.bases = {kDefaultNoiseBasis};
-  config.frequencies = {CnjOptions{}.frequency};
-  config.step_scales = {CnjOptions{}.step_scale};
-  config.steps = {free_field_steps()};
-  const CnjStudyResult result = run_cnj_study(config);
+  const CnjStudyResult result = run_cnj_study(one_paper_lattice_cell());
   ASSERT_EQ(result.rows.size(), 1u);
   const CnjStudyRow& r = result.rows.front();
   EXPECT_EQ(r.grid, 10);
@@ -208,16 +214,10 @@ TEST(CnjStudy, RuleChoosesTheStepCountWithTheBetterScore) {
   }
 }
 
-// Step counts are a dimension of the grid: each run traces with its own M, the cells and the reading
-// tell them apart, and the rule's choice names one.
+// Step counts are a dimension of the grid: each run traces with its own M, and the cells and the
+// reading tell them apart (RuleChoosesTheStepCountWithTheBetterScore checks the rule's choice).
 TEST(CnjStudy, StudiesStepCountsAsCells) {
-  CnjStudyConfig config;
-  config.lattice = StudyLattice::paper;
-  config.dimensions = {3};
-  config.seeds = 1;
-  config.bases = {kDefaultNoiseBasis};
-  config.frequencies = {CnjOptions{}.frequency};
-  config.step_scales = {CnjOptions{}.step_scale};
+  CnjStudyConfig config = one_paper_lattice_cell();
   config.steps = {1, 4};
   const CnjStudyResult result = run_cnj_study(config);
   ASSERT_EQ(result.rows.size(), 2u);
