@@ -40,9 +40,22 @@ struct PointSet {
   const double* point(std::size_t i) const { return coordinates.data() + i * dimension; }
 };
 
-enum class Method { cnj, jitter, pds, sobol, random, halton, lhs };
+// Every coordinate of a point on the torus [0,1)^N into [0, 1): x - floor(x), and 0 where rounding
+// gives 1 (a coordinate just below 0, whose exact image lies within an ulp of 1, i.e. of 0).
+inline void wrap_to_unit_torus(double* coordinates, std::size_t count) {
+  for (std::size_t k = 0; k < count; ++k) {
+    const double wrapped = coordinates[k] - std::floor(coordinates[k]);
+    coordinates[k] = wrapped < 1.0 ? wrapped : 0.0;
+  }
+}
+
+// jitter_matched: jitter whose RMS displacement equals CNJ's in the same run (sampling/jitter.hpp).
+enum class Method { cnj, jitter, jitter_matched, pds, sobol, random, halton, lhs };
+inline constexpr Method kAllMethods[] = {Method::cnj,   Method::jitter, Method::jitter_matched, Method::pds,
+                                         Method::sobol, Method::random, Method::halton,         Method::lhs};
 Method parse_method(std::string_view name);  // throws std::invalid_argument listing the names
 std::string_view to_string(Method method);
+std::string method_names();  // "cnj, jitter, jitter-matched, ..."
 
 // paper: Section 5.1 exactly as data/PROTOCOL.md establishes it. unit: every method in the unit
 // cube at the density of a cell-centred K^N lattice.
