@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/torus.hpp"
+
 namespace dfvn {
 
 // The cube [lo, lo + side]^N, or with `inscribed_ball` the ball inscribed in it (CNJ's --domain ball).
@@ -39,15 +41,6 @@ struct PointSet {
   std::size_t size() const { return dimension ? coordinates.size() / dimension : 0; }
   const double* point(std::size_t i) const { return coordinates.data() + i * dimension; }
 };
-
-// Every coordinate of a point on the torus [0,1)^N into [0, 1): x - floor(x), and 0 where rounding
-// gives 1 (a coordinate just below 0, whose exact image lies within an ulp of 1, i.e. of 0).
-inline void wrap_to_unit_torus(double* coordinates, std::size_t count) {
-  for (std::size_t k = 0; k < count; ++k) {
-    const double wrapped = coordinates[k] - std::floor(coordinates[k]);
-    coordinates[k] = wrapped < 1.0 ? wrapped : 0.0;
-  }
-}
 
 // jitter_matched: jitter whose RMS displacement equals CNJ's in the same run (sampling/jitter.hpp).
 enum class Method { cnj, jitter, jitter_matched, pds, sobol, random, halton, lhs };
