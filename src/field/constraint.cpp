@@ -133,20 +133,13 @@ void ramp(double w, double d, const Vec<N>& grad_d, double& value, Vec<N>& gradi
   value *= scale;
 }
 
-template <int N>
-void ramp_inside_cube(double w, const Vec<N>& x, double& value, Vec<N>& gradient) {
-  // H <= min_k t_k: deeper than w from every face H may still be below w (near an edge or a corner),
-  // so H decides.
+// The ramp where the boundary function d (the cube's H or the ball's signed distance) is below w. For the
+// cube H <= min_k t_k: deeper than w from every face H may still be below w (near an edge or a corner),
+// so H decides.
+template <int N, double (*kBoundaryFunction)(const Vec<N>&, Vec<N>&)>
+void ramp_inside(double w, const Vec<N>& x, double& value, Vec<N>& gradient) {
   Vec<N> grad_d;
-  const double d = cube_boundary_function<N>(x, grad_d);
-  if (d >= w) return;
-  ramp<N>(w, d, grad_d, value, gradient);
-}
-
-template <int N>
-void ramp_inside_ball(double w, const Vec<N>& x, double& value, Vec<N>& gradient) {
-  Vec<N> grad_d;
-  const double d = ball_boundary_function<N>(x, grad_d);
+  const double d = kBoundaryFunction(x, grad_d);
   if (d >= w) return;
   ramp<N>(w, d, grad_d, value, gradient);
 }
@@ -224,7 +217,7 @@ auto ConstraintFunction<N>::choose_replacement(FieldConstraint constraint, Bound
     case FieldConstraint::inside_cube:
       if (ramped)
         return [](const ConstraintFunction& f, const Vec<N>& x, double& v, Vec<N>& g) {
-          ramp_inside_cube<N>(f.width_, x, v, g);
+          ramp_inside<N, cube_boundary_function<N>>(f.width_, x, v, g);
         };
       return [](const ConstraintFunction& f, const Vec<N>& x, double& v, Vec<N>& g) {
         replace_inside_cube<N>(f.gradient_rms_, f.width_, x, v, g);
@@ -232,7 +225,7 @@ auto ConstraintFunction<N>::choose_replacement(FieldConstraint constraint, Bound
     case FieldConstraint::inside_ball:
       if (ramped)
         return [](const ConstraintFunction& f, const Vec<N>& x, double& v, Vec<N>& g) {
-          ramp_inside_ball<N>(f.width_, x, v, g);
+          ramp_inside<N, ball_boundary_function<N>>(f.width_, x, v, g);
         };
       return [](const ConstraintFunction& f, const Vec<N>& x, double& v, Vec<N>& g) {
         replace_inside_ball<N>(f.gradient_rms_, f.width_, x, v, g);
