@@ -33,6 +33,7 @@
 #include "reproduce/integration.hpp"
 #include "reproduce/reproduce.hpp"
 #include "sampling/experiment.hpp"
+#include "stats/distance_scale.hpp"
 #include "stats/point_set_statistics.hpp"
 #include "stats/realizations.hpp"
 #include "stats/spectrum.hpp"
@@ -75,6 +76,20 @@ const CLI::Validator kNoiseFrequency(
                          dfvn::kMaxNoiseFrequency, dfvn::quote_for_message(text));
     },
     "FREQUENCY");
+
+// stats --domain-side: a finite side in [2^-1000, 2^1000] (stats/distance_scale.hpp says why).
+const CLI::Validator kDomainSide(
+    [](std::string& text) -> std::string {
+      double value = 0.0;
+      if (!CLI::detail::lexical_cast(text, value)) return "must be a number, got " + dfvn::quote_for_message(text);
+      try {
+        dfvn::check_domain_side(value, "the side");
+      } catch (const std::invalid_argument& e) {
+        return e.what();
+      }
+      return {};
+    },
+    "SIDE");
 
 // CNJ's step scale: (0, 2^20] (sampling/curl_noise_jitter.hpp says why).
 const CLI::Validator kStepScale(
@@ -760,7 +775,9 @@ struct StatsCommand {
         ->check(CLI::ExistingFile);
     cmd->add_option("--format", format, "csv, npy or dat; default: from the extension (.txt = dat)")
         ->check(CLI::IsMember({"csv", "npy", "dat"}));
-    cmd->add_option("--domain-side", domain_side, "The points lie in [0, S]^N")->capture_default_str()->check(kPositiveFinite);
+    cmd->add_option("--domain-side", domain_side, "The points lie in [0, S]^N, S in [2^-1000, 2^1000]")
+        ->capture_default_str()
+        ->check(kDomainSide);
     cmd->add_flag("--discrepancy", discrepancy, "Also compute the four L2 discrepancies (O(points^2) work)");
     cmd->add_option("--knn", knn, "KD-tree backend: nanoflann or flann")
         ->capture_default_str()

@@ -36,6 +36,7 @@ struct SampleArguments {
   std::string reprojection;
   int steps = 1;
   int threads = 0;
+  double max_memory_gib = 0.0;
 };
 
 SampleConfig sample_config(const SampleArguments& a) {
@@ -64,6 +65,7 @@ SampleConfig sample_config(const SampleArguments& a) {
   config.cnj.trace.integrator = parse_integrator(a.integrator);
   config.cnj.trace.reprojection = parse_reprojection(a.reprojection);
   config.cnj.trace.steps = a.steps;
+  config.max_memory_gib = a.max_memory_gib;
   return config;
 }
 
@@ -98,15 +100,16 @@ void bind_sampling(py::module_& module) {
       [](const std::string& method, int dim, std::optional<int> grid, std::optional<std::uint64_t> n, std::uint64_t seed,
          const std::string& protocol, bool scramble, double radius, int ncandidates, const std::string& noise,
          double frequency, double step_scale, const std::string& integrator, const std::string& reprojection, int steps,
-         int threads) {
+         int threads, double max_memory_gib) {
         return sample(SampleArguments{method, dim, grid, n, seed, protocol, scramble, radius, ncandidates, noise, frequency,
-                                      step_scale, integrator, reprojection, steps, threads});
+                                      step_scale, integrator, reprojection, steps, threads, max_memory_gib});
       },
       "method"_a, "dim"_a, py::kw_only(), "grid"_a = py::none(), "n"_a = py::none(), "seed"_a = 1,
       "protocol"_a = "unit", "scramble"_a = true, "radius"_a = 0.0, "ncandidates"_a = 30,
       "noise"_a = std::string(to_string(cnj.noise)), "frequency"_a = cnj.frequency, "step_scale"_a = cnj.step_scale,
       "integrator"_a = std::string(to_string(cnj.trace.integrator)),
       "reprojection"_a = std::string(to_string(cnj.trace.reprojection)), "steps"_a = cnj_steps(cnj), "threads"_a = 0,
+      "max_memory_gib"_a = 0.0,
       R"(One point set as an (n, dim) float64 array, the same bits as `dfvn-sample --points DIR --format npy`.
 
 method: 'cnj' (curl noise jittering), 'jitter', 'pds' (Poisson disk), 'sobol', 'random', 'halton', 'lhs'.
@@ -119,7 +122,8 @@ digit-permuted Halton (False: neither). radius, ncandidates: Poisson disk radius
 candidates per point. noise, frequency (cycles per lattice spacing), step_scale, integrator,
 reprojection, steps: CNJ's options, defaults as the command line's. cnj keeps every point in [0,1]^dim
 (the field bounded by the cube, Eq. 13, as the command line's default), so steps 0 (the domain mode's
-count) means 1. threads: 0 = all cores (the result never depends on it).)");
+count) means 1. threads: 0 = all cores (the result never depends on it). max_memory_gib: the memory the set may
+need, in GiB (0: 80% of the machine's); a larger set raises ValueError before any work.)");
 }
 
 }  // namespace dfvn::python

@@ -9,6 +9,7 @@
 
 #include "core/stopwatch.hpp"
 #include "io/csv.hpp"
+#include "stats/distance_scale.hpp"
 
 namespace dfvn {
 
@@ -34,6 +35,7 @@ std::vector<double> nearest_neighbour_distances_any_dimension(const PointSet& po
 
 void check_point_set(const PointSet& points) {
   if (points.size() < 2) throw std::invalid_argument(fmt::format("the set has {} point(s); at least 2 are needed", points.size()));
+  check_domain_side(points.domain.side);
   for (std::size_t i = 0; i < points.size(); ++i)
     for (int k = 0; k < points.dimension; ++k)
       if (!points.domain.contains(points.point(i) + k, 1))
@@ -51,8 +53,9 @@ PointSetStatistics measure_point_set(const PointSet& points, const PointSetStati
     if (progress) progress("statistics", f);
   };
   report(0.0);
-  out.nearest = summarize_nearest_neighbours(
-      nearest_neighbour_distances_any_dimension(points, options.knn, options.threads, report), points);
+  std::vector<double> distances = nearest_neighbour_distances_any_dimension(points, options.knn, options.threads, report);
+  if (points.dimension > 1) check_nearest_neighbours_resolved(points, distances);  // 1D needs no squares
+  out.nearest = summarize_nearest_neighbours(std::move(distances), points);
   if (options.discrepancy) {
     for (std::size_t d = 0; d < std::size(kAllDiscrepancies); ++d) {
       const DiscrepancyKind kind = kAllDiscrepancies[d];
