@@ -239,7 +239,7 @@ struct FieldCommand {
   }
 
   void run() {
-    if (output != "-") dfvn::check_writable(output);
+    dfvn::check_outputs({{"--output", output}});
     if (diagnose) {
       diagnosis.dimension = dimension > 0 ? dimension : 3;
       diagnosis.field = {dfvn::parse_noise_basis(noise), frequency};
@@ -278,13 +278,11 @@ struct FieldCommand {
 };
 
 
-// Creates `dir` (and parents) and checks a file can be written in it.
-void make_output_dir(const std::string& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  if (error || !std::filesystem::is_directory(dir))
-    throw std::runtime_error("cannot create directory " + dfvn::quote_for_message(dir, dfvn::kMaxPathEchoChars));
-  dfvn::check_writable((std::filesystem::path(dir) / "probe").string());
+// The outputs of a reproduction: its files in `dir`, each named as "--out (table1.csv)" in messages.
+std::vector<std::pair<std::string, std::string>> files_in(const std::string& dir, const std::vector<std::string>& names) {
+  std::vector<std::pair<std::string, std::string>> outputs;
+  for (const std::string& name : names) outputs.emplace_back("--out (" + name + ")", (std::filesystem::path(dir) / name).string());
+  return outputs;
 }
 
 struct SampleCommand {
@@ -456,18 +454,15 @@ struct SampleCommand {
 
     // Check every destination before the work starts; each file is then written whole or not at all.
     std::vector<std::pair<std::string, std::string>> outputs;
-    if (!no_stats) outputs.emplace_back("--stats", stats_path);
+    if (!no_stats)
+      outputs.emplace_back(stats_option->count() > 0 ? "--stats" : "the statistics (default --stats -)", stats_path);
     if (!rdf_path.empty()) outputs.emplace_back("--rdf", rdf_path);
     if (!json_path.empty()) outputs.emplace_back("--json", json_path);
-    if (!points_dir.empty() && points_dir != "-")
+    if (points_dir == "-") outputs.emplace_back("--points", points_dir);
+    const bool points_to_files = !points_dir.empty() && points_dir != "-";
+    if (points_to_files)
       for (dfvn::Method m : config.methods) outputs.emplace_back("--points (" + point_file_name(m) + ")", point_file(m));
-    dfvn::check_distinct_outputs(outputs);
-    for (const auto& [option, path] : outputs)
-      if (!option.starts_with("--points")) dfvn::check_writable(path);
-    if (!points_dir.empty() && points_dir != "-") {
-      make_output_dir(points_dir);
-      for (dfvn::Method m : config.methods) dfvn::check_writable(point_file(m));
-    }
+    dfvn::check_outputs(outputs, points_to_files ? std::vector<std::string>{points_dir} : std::vector<std::string>{});
     for (const std::string& warning : dfvn::sampling_warnings(config)) std::fprintf(stderr, "%s: warning: %s\n", kProgram, warning.c_str());
 
     const dfvn::PointFormat point_format = dfvn::parse_point_format(format);
@@ -506,7 +501,7 @@ struct SampleCommand {
     if (!no_stats) dfvn::write_file_atomically(stats_path, stats);
   }
 
-  // Options that only make sense together, and outputs that would share standard output.
+  // Options that only make sense together (the outputs themselves: dfvn::check_outputs).
   void check_output_options() const {
     if (format_option->count() > 0 && points_dir.empty())
       throw std::invalid_argument("--format " + format + " applies to --points, which is not given");
@@ -518,16 +513,6 @@ struct SampleCommand {
     if (points_dir == "-" && config.methods.size() != 1)
       throw std::invalid_argument(fmt::format("--points - writes one point set to standard output; --methods names {}",
                                               config.methods.size()));
-    // Two CSVs on one standard output would interleave.
-    std::vector<std::string> on_stdout;
-    if (!no_stats && stats_path == "-") on_stdout.push_back(stats_option->count() > 0 ? "--stats -" : "the statistics (default --stats -)");
-    if (rdf_path == "-") on_stdout.push_back("--rdf -");
-    if (points_dir == "-") on_stdout.push_back("--points -");
-    if (json_path == "-") on_stdout.push_back("--json -");
-    if (on_stdout.size() > 1)
-      throw std::invalid_argument(fmt::format("{} and {} would both write to standard output; send one to a file{}",
-                                              on_stdout[0], on_stdout[1],
-                                              on_stdout[0].starts_with("the statistics") ? " (-o FILE) or use --no-stats" : ""));
   }
 
   // With -n, PDS that saturated before the count: say so (the saturated column has it in every run).
@@ -666,7 +651,7 @@ struct ReproduceCommand {
     study.seed = common3.seed;
     study.threads = common3.threads;
     study.validate();
-    make_output_dir(study.out_dir);
+    dfvn::check_outputs(files_in(study.out_dir, dfvn::cnj_study_output_files()), {study.out_dir});
     dfvn::ProgressReporter* reporter = progress.make();
     const auto result = dfvn::run_cnj_study(study, reporter->callback());
     reporter->complete();
@@ -701,7 +686,7 @@ struct ReproduceCommand {
     for (const auto& name : CLI::detail::split(integration_methods, ','))
       integration.methods.push_back(dfvn::parse_method(CLI::detail::trim_copy(name)));
     integration.validate();
-    make_output_dir(integration.out_dir);
+    dfvn::check_outputs(files_in(integration.out_dir, dfvn::integration_output_files(integration)), {integration.out_dir});
     dfvn::ProgressReporter* reporter = progress.make();
     const auto result = dfvn::run_integration(integration, reporter->callback());
     reporter->complete();
@@ -718,7 +703,8 @@ struct ReproduceCommand {
     config.threads = common1.threads;
     config.out_dir = out1;
     config.realizations = table1_realizations;
-    make_output_dir(out1);
+    config.validate();
+    dfvn::check_outputs(files_in(out1, dfvn::table1_output_files()), {out1});
     dfvn::ProgressReporter* reporter = progress.make();
     const auto result = dfvn::run_table1(config, reporter->callback());
     reporter->complete();
@@ -741,7 +727,7 @@ struct ReproduceCommand {
     config.seed = common2.seed;
     config.threads = common2.threads;
     table2.validate();
-    make_output_dir(out2);
+    dfvn::check_outputs(files_in(out2, dfvn::table2_output_files(table2)), {out2});
     dfvn::ProgressReporter* reporter = progress.make();
     const auto result = dfvn::run_table2(table2, reporter->callback());
     reporter->complete();
@@ -762,6 +748,7 @@ struct StatsCommand {
   bool discrepancy = false;
   bool no_timing = false;
   ProgressOptions progress;
+  CLI::Option* output_option = nullptr;
 
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
@@ -782,7 +769,7 @@ struct StatsCommand {
     cmd->add_option("--knn", knn, "KD-tree backend: nanoflann or flann")
         ->capture_default_str()
         ->check(CLI::IsMember({"nanoflann", "flann"}));
-    cmd->add_option("-o,--output", output, "Statistics CSV ('-' = standard output)")->capture_default_str();
+    output_option = cmd->add_option("-o,--output", output, "Statistics CSV ('-' = standard output)")->capture_default_str();
     cmd->add_option("--json", json_path, "Also write the statistics as JSON ('-' = standard output)");
     cmd->add_flag("--no-timing", no_timing, "Leave seconds_stats empty (and out of --json): identical files for identical input");
     cmd->add_option("--spectrum", spectrum_prefix,
@@ -808,16 +795,17 @@ struct StatsCommand {
     } catch (const std::exception& e) {
       fail(input + (sets.empty() ? ", " : fmt::format(", set {}: ", sets.size() - 1)) + e.what());
     }
-    if (output == "-" && json_path == "-")
-      fail("the statistics (--output -) and --json - would both write to standard output; send one to a file");
-    if (!json_path.empty()) dfvn::check_distinct_outputs({{"--output", output}, {"--json", json_path}});
-    dfvn::check_writable(output);
-    if (!json_path.empty()) dfvn::check_writable(json_path);
-    if (!spectrum_prefix.empty()) {
-      if (sets.front().dimension != 2 && sets.front().dimension != 3)
-        fail(fmt::format("--spectrum needs 2D or 3D points; '{}' holds {}D points", input, sets.front().dimension));
-      dfvn::check_writable(spectrum_prefix + ".csv");
-    }
+    if (!spectrum_prefix.empty() && sets.front().dimension != 2 && sets.front().dimension != 3)
+      fail(fmt::format("--spectrum needs 2D or 3D points; '{}' holds {}D points", input, sets.front().dimension));
+    // Every output, checked together before the work: --output, --json and the spectrum's three files.
+    std::vector<std::pair<std::string, std::string>> outputs = {
+        {output_option->count() > 0 ? "--output" : "the statistics (default --output -)", output}};
+    if (!json_path.empty()) outputs.emplace_back("--json", json_path);
+    if (!spectrum_prefix.empty())
+      for (const std::string& suffix : dfvn::spectrum_file_suffixes())
+        outputs.emplace_back("--spectrum (" + std::filesystem::path(spectrum_prefix + suffix).filename().string() + ")",
+                             spectrum_prefix + suffix);
+    dfvn::check_outputs(outputs);
     dfvn::PointSetStatisticsOptions options;
     options.discrepancy = discrepancy;
     options.knn = dfvn::parse_knn_backend(knn);

@@ -222,6 +222,31 @@ void check_distinct_outputs(const std::vector<std::pair<std::string, std::string
                                     quoted_path(outputs[i].second) + "; give them different paths");
 }
 
+void make_output_directory(const std::string& dir) {
+  std::error_code error;
+  fs::create_directories(dir, error);
+  if (error || !fs::is_directory(dir)) throw std::runtime_error("cannot create directory " + quoted_path(dir));
+  check_writable((fs::path(dir) / "probe").string());
+}
+
+void check_outputs(const std::vector<std::pair<std::string, std::string>>& outputs,
+                   const std::vector<std::string>& directories) {
+  // Two outputs on one standard output would interleave. "--rdf -" names an option as given; a
+  // description in parentheses ("the statistics (default --stats -)") already says it.
+  const auto as_given = [](const std::string& option) { return option.ends_with(")") ? option : option + " -"; };
+  const std::string* on_stdout = nullptr;
+  for (const auto& [option, path] : outputs)
+    if (path == "-") {
+      if (on_stdout)
+        throw std::invalid_argument(as_given(*on_stdout) + " and " + as_given(option) +
+                                    " would both write to standard output; send one to a file");
+      on_stdout = &option;
+    }
+  check_distinct_outputs(outputs);
+  for (const std::string& dir : directories) make_output_directory(dir);
+  for (const auto& [option, path] : outputs) check_writable(path);
+}
+
 void remove_temporaries_on_signals() {
   struct sigaction action {};
   action.sa_handler = remove_temporaries_and_die;

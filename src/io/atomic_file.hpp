@@ -67,6 +67,19 @@ void check_writable(const std::string& path);
 // written through (devices such as /dev/null, FIFOs) may be shared.
 void check_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs);
 
+// Creates the directory `dir` with its parents and checks that a file can be written in it. Throws
+// std::runtime_error naming it.
+void make_output_directory(const std::string& dir);
+
+// The one check of a run's outputs, made by every subcommand before its work starts. `outputs` are
+// (option, path) pairs, e.g. {"--json", "run.json"} or {"--spectrum (P.csv)", "P.csv"}; `directories`
+// are the folders the run writes into, which are created here once the outputs are known not to clash
+// (outputs inside them are checked after). Refuses, with std::invalid_argument naming both options,
+// two outputs on standard output ("-") and two on the same file (check_distinct_outputs); then
+// creates the directories and checks that each output can be written (check_writable).
+void check_outputs(const std::vector<std::pair<std::string, std::string>>& outputs,
+                   const std::vector<std::string>& directories = {});
+
 // Installs handlers that delete every live temporary on SIGINT, SIGTERM, SIGHUP and SIGPIPE and then
 // die of the signal; signals that are ignored (nohup, background jobs) stay ignored. For programs,
 // not for the library to call on its own.

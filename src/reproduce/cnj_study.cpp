@@ -508,6 +508,10 @@ std::string cnj_study_markdown(const CnjStudyResult& result) {
   return md;
 }
 
+std::vector<std::string> cnj_study_output_files() {
+  return {"cnj_study.csv", "cnj_study_jitter.csv", "cnj_study.md", "cnj_study.png"};
+}
+
 std::string write_cnj_study(const CnjStudyResult& result, const Log& log) {
   const std::filesystem::path dir = result.config.out_dir;
   std::string rows =

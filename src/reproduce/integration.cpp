@@ -264,6 +264,12 @@ std::string integration_markdown(const IntegrationResult& result) {
   return md;
 }
 
+std::vector<std::string> integration_output_files(const IntegrationConfig& config) {
+  std::vector<std::string> files = {"integration.csv", "integration_slopes.csv", "integration.md"};
+  for (int d : config.dimensions) files.push_back(fmt::format("integration_{}d.png", d));
+  return files;
+}
+
 std::string write_integration(const IntegrationResult& result, const Log& log) {
   const std::string dir = result.config.out_dir;
   std::string cells = "dim,family,method,grid,points,rms_relative_error,standard_error,realizations\n";

@@ -57,6 +57,8 @@ IntegrationResult run_integration(const IntegrationConfig& config, const StagePr
 // reading) and, with gnuplot, DIR/integration_<N>d.png (scripts/integration.gp). Returns the
 // Markdown; throws PlotError when gnuplot fails.
 std::string write_integration(const IntegrationResult& result, const Log& log);
+// The files write_integration writes into config.out_dir (the figures only with gnuplot).
+std::vector<std::string> integration_output_files(const IntegrationConfig& config);
 std::string integration_markdown(const IntegrationResult& result);
 
 }  // namespace dfvn

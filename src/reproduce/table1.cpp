@@ -170,6 +170,8 @@ void draw_figure4(const Table1Result& result, const std::string& dir, const Log&
 
 }  // namespace
 
+std::vector<std::string> table1_output_files() { return {"table1.csv", "rdf.csv", "table1.md", "figure4.png"}; }
+
 std::string write_table1(const Table1Config& config, const Table1Result& result, const Log& log) {
   const std::string dir = config.out_dir;
   const std::string header = "table1_column," + stats_csv_header();

@@ -305,6 +305,14 @@ std::string table2_markdown(const Table2Result& r) {
   return md;
 }
 
+std::vector<std::string> table2_output_files(const Table2Config& config) {
+  std::vector<std::string> files = {"table2.csv", "table2.md", "timeline.csv"};
+  for (const WarpVariant& variant : table2_variants()) files.push_back(variant.label() + ".png");
+  for (double t : config.figure_times) files.push_back(fmt::format("time-{:g}.png", t));
+  for (const char* name : {"source.png", "reference.png", "figure5.png"}) files.emplace_back(name);
+  return files;
+}
+
 std::string write_table2(const std::string& out_dir, const Table2Result& r, const Log& log) {
   const auto path = [&](const std::string& name) { return (std::filesystem::path(out_dir) / name).string(); };
   std::string csv =

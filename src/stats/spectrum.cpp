@@ -104,6 +104,8 @@ PowerSpectrum power_spectrum(const std::vector<PointSet>& sets, int max_frequenc
   return out;
 }
 
+std::vector<std::string> spectrum_file_suffixes() { return {".csv", "_radial.csv", ".png"}; }
+
 void write_spectrum_files(const std::string& prefix, const PowerSpectrum& spectrum,
                           const std::function<void(const std::string&)>& log) {
   const int side = 2 * spectrum.max_frequency + 1;

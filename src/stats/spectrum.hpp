@@ -45,5 +45,7 @@ PowerSpectrum power_spectrum(const std::vector<PointSet>& sets, int max_frequenc
 // installed (otherwise `log` says how to get it). Throws PlotError if gnuplot fails.
 void write_spectrum_files(const std::string& prefix, const PowerSpectrum& spectrum,
                           const std::function<void(const std::string&)>& log);
+// What write_spectrum_files appends to the prefix: ".csv", "_radial.csv", ".png".
+std::vector<std::string> spectrum_file_suffixes();
 
 }  // namespace dfvn
