@@ -29,6 +29,7 @@
 #include "io/point_file.hpp"
 #include "reproduce/cnj_study.hpp"
 #include "noise/noise_domain.hpp"
+#include "plot/gnuplot.hpp"
 #include "io/point_reader.hpp"
 #include "reproduce/integration.hpp"
 #include "reproduce/reproduce.hpp"
@@ -651,6 +652,7 @@ struct ReproduceCommand {
     study.seed = common3.seed;
     study.threads = common3.threads;
     study.validate();
+    dfvn::check_figure_prerequisites();  // before the output folder is made
     dfvn::check_outputs(files_in(study.out_dir, dfvn::cnj_study_output_files()), {study.out_dir});
     dfvn::ProgressReporter* reporter = progress.make();
     const auto result = dfvn::run_cnj_study(study, reporter->callback());
@@ -686,6 +688,7 @@ struct ReproduceCommand {
     for (const auto& name : CLI::detail::split(integration_methods, ','))
       integration.methods.push_back(dfvn::parse_method(CLI::detail::trim_copy(name)));
     integration.validate();
+    dfvn::check_figure_prerequisites();  // before the output folder is made
     dfvn::check_outputs(files_in(integration.out_dir, dfvn::integration_output_files(integration)), {integration.out_dir});
     dfvn::ProgressReporter* reporter = progress.make();
     const auto result = dfvn::run_integration(integration, reporter->callback());
@@ -704,6 +707,7 @@ struct ReproduceCommand {
     config.out_dir = out1;
     config.realizations = table1_realizations;
     config.validate();
+    dfvn::check_figure_prerequisites();  // before the output folder is made
     dfvn::check_outputs(files_in(out1, dfvn::table1_output_files()), {out1});
     dfvn::ProgressReporter* reporter = progress.make();
     const auto result = dfvn::run_table1(config, reporter->callback());
@@ -727,6 +731,7 @@ struct ReproduceCommand {
     config.seed = common2.seed;
     config.threads = common2.threads;
     table2.validate();
+    dfvn::check_figure_prerequisites();  // before the output folder is made
     dfvn::check_outputs(files_in(out2, dfvn::table2_output_files(table2)), {out2});
     dfvn::ProgressReporter* reporter = progress.make();
     const auto result = dfvn::run_table2(table2, reporter->callback());
@@ -806,6 +811,7 @@ struct StatsCommand {
         outputs.emplace_back("--spectrum (" + std::filesystem::path(spectrum_prefix + suffix).filename().string() + ")",
                              spectrum_prefix + suffix);
     dfvn::check_outputs(outputs);
+    if (!spectrum_prefix.empty()) dfvn::check_figure_prerequisites();
     dfvn::PointSetStatisticsOptions options;
     options.discrepancy = discrepancy;
     options.knn = dfvn::parse_knn_backend(knn);
