@@ -21,6 +21,7 @@
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
 #include "core/repeats.hpp"
+#include "core/seeds.hpp"
 #include "field/evaluate_points.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
@@ -451,6 +452,7 @@ struct SampleCommand {
     config.compute_statistics = !no_stats;
     config.compute_rdf = !rdf_path.empty();
     config.validate();
+    dfvn::check_seed_range(common.seed, static_cast<std::uint64_t>(realizations), "--seed", "--realizations");
     check_output_options();
 
     // Check every destination before the work starts; each file is then written whole or not at all.

@@ -12,6 +12,7 @@
 
 #include "core/quantile.hpp"
 #include "core/repeats.hpp"
+#include "core/seeds.hpp"
 #include "core/stopwatch.hpp"
 #include "io/atomic_file.hpp"
 #include "plot/gnuplot.hpp"
@@ -36,6 +37,7 @@ void CnjStudyConfig::validate() const {
   if (dimensions.empty()) throw std::invalid_argument("--dims must name at least one dimension");
   for (int d : dimensions) study_grid(lattice, d);
   if (seeds < 1 || seeds > 1000) throw std::invalid_argument(fmt::format("--seeds must be in 1..1000, got {}", seeds));
+  check_seed_range(seed, static_cast<std::uint64_t>(seeds), "--seed", "--seeds");
   if (bases.empty() || frequencies.empty() || step_scales.empty() || steps.empty())
     throw std::invalid_argument("the study needs at least one basis, frequency, step scale and step count");
   for (double f : frequencies)

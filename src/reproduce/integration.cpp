@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "core/seeds.hpp"
 #include "io/atomic_file.hpp"
 #include "plot/gnuplot.hpp"
 #include "stats/realizations.hpp"
@@ -22,6 +23,7 @@ void IntegrationConfig::validate() const {
   if (realizations < 2) throw std::invalid_argument("--realizations must be at least 2 (16 or more for the reading)");
   if (max_points < 64) throw std::invalid_argument("--max-points must be at least 64");
   if (methods.empty()) throw std::invalid_argument("--methods must name at least one method");
+  check_seed_range(seed, static_cast<std::uint64_t>(realizations), "--seed", "--realizations");
 }
 
 std::vector<int> integration_grids(int dimension, std::uint64_t max_points) {

@@ -11,6 +11,7 @@
 #include "core/machine.hpp"
 #include "core/message_text.hpp"
 #include "core/repeats.hpp"
+#include "core/seeds.hpp"
 #include "core/stopwatch.hpp"
 #include "io/atomic_file.hpp"
 #include "plot/gnuplot.hpp"
@@ -67,6 +68,7 @@ void Table1Config::validate() const {
   for (int d : dimensions) table1_grid(d);
   if (realizations < 1 || realizations > 1000)
     throw std::invalid_argument(fmt::format("--realizations must be in 1..1000, got {}", realizations));
+  check_seed_range(seed, static_cast<std::uint64_t>(realizations), "--seed", "--realizations");
 }
 
 Table1Result run_table1(const Table1Config& config, const StageProgress& progress) {
