@@ -101,7 +101,7 @@ struct Table2Row {
 
 struct Table2Result {
   Table2Config config;
-  WarpConfig second;  // the second resolution's configuration (width 0 if none)
+  WarpConfig second{.width = 0, .height = 0};  // the second resolution's configuration (width 0 if none)
   double reference_seconds = 0.0;
   int threads = 1;
   std::string machine;  // where the times were measured (core/machine.hpp)
