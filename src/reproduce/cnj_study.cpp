@@ -15,6 +15,7 @@
 #include "core/seeds.hpp"
 #include "core/stopwatch.hpp"
 #include "io/atomic_file.hpp"
+#include "noise/noise_domain.hpp"
 #include "plot/gnuplot.hpp"
 #include "reproduce/reproduce.hpp"
 #include "sampling/curl_noise_jitter.hpp"
@@ -40,10 +41,24 @@ void CnjStudyConfig::validate() const {
   check_seed_range(seed, static_cast<std::uint64_t>(seeds), "--seed", "--seeds");
   if (bases.empty() || frequencies.empty() || step_scales.empty() || steps.empty())
     throw std::invalid_argument("the study needs at least one basis, frequency, step scale and step count");
-  for (double f : frequencies)
-    if (!std::isfinite(f) || !(f > 0.0)) throw std::invalid_argument("study frequencies must be finite and positive");
+  // Each value as CNJ would check it, but named by the option that gave it (CNJ's own message names
+  // neither the list nor the dimension).
+  for (double f : frequencies) {
+    if (!std::isfinite(f) || !(f > 0.0))
+      throw std::invalid_argument(fmt::format("--frequencies must be finite and positive, got {:g}", f));
+    for (int d : dimensions) {
+      const LatticeSpec spec{d, study_grid(lattice, d), lattice == StudyLattice::paper ? Protocol::paper : Protocol::unit};
+      const double field_frequency = f / spec.spacing();
+      if (!(field_frequency >= kMinNoiseFrequency && field_frequency <= kMaxNoiseFrequency))
+        throw std::invalid_argument(fmt::format(
+            "--frequencies {:g} cycles per lattice spacing is a field frequency of {:g} in {}D (K = {}), outside the "
+            "noise's [2^-50, 2^50]",
+            f, field_frequency, d, spec.grid));
+    }
+  }
   for (double c : step_scales)
-    if (!std::isfinite(c) || !(c > 0.0)) throw std::invalid_argument("study step scales must be finite and positive");
+    if (!std::isfinite(c) || !(c > 0.0) || c > CnjOptions::kMaxStepScale)
+      throw std::invalid_argument(fmt::format("--step-scales must be in (0, 2^20], got {:g}", c));
   for (int m : steps)
     if (m < 1 || m > CnjOptions::kMaxSteps)
       throw std::invalid_argument(fmt::format("--steps must be in 1..{}, got {}", CnjOptions::kMaxSteps, m));
