@@ -234,6 +234,15 @@ std::string format_real(double value, int significant) {
   return text;
 }
 
+std::string csv_quoted(std::string_view text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + '"';
+}
+
 std::string numbered_header(std::string_view prefix, int count, int first_index) {
   std::string out;
   for (int i = 0; i < count; ++i) {

@@ -57,6 +57,10 @@ void append_double(std::string& out, double value);
 // beside "0.6", not "1").
 std::string format_real(double value, int significant = 9);
 
+// `text` as one CSV field (RFC 4180): in double quotes, each quote inside doubled, every other byte as
+// it is (commas, newlines and non-UTF-8 bytes are then part of the field), e.g. q"uo.csv -> "q""uo.csv".
+std::string csv_quoted(std::string_view text);
+
 // "x0,x1,...,x{n-1}" style header: prefix0,prefix1,...
 std::string numbered_header(std::string_view prefix, int count, int first_index = 0);
 

@@ -84,7 +84,7 @@ std::string point_statistics_csv_header() {
 std::string point_statistics_csv_row(std::string_view input, std::string_view set, const PointSet& points,
                                      const PointSetStatistics& s, bool timing) {
   // The five displacement columns stay empty: there are no lattice sites.
-  std::string row = fmt::format("\"{}\",{},{},{},{},{},{},{},{},,,,,,{},{}", input, set, points.dimension, s.nearest.points,
+  std::string row = fmt::format("{},{},{},{},{},{},{},{},{},,,,,,{},{}", csv_quoted(input), set, points.dimension, s.nearest.points,
                                 format_real(s.nearest.min), format_real(s.nearest.q01), format_real(s.nearest.median),
                                 format_real(s.nearest.mean), format_real(s.nearest.median_scaled),
                                 timing ? fmt::format("{:.6f}", s.seconds) : std::string(), format_real(points.domain.side));
