@@ -21,6 +21,7 @@
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
 #include "core/repeats.hpp"
+#include "core/seeds.hpp"
 #include "field/evaluate_points.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
@@ -29,10 +30,12 @@
 #include "io/point_file.hpp"
 #include "reproduce/cnj_study.hpp"
 #include "noise/noise_domain.hpp"
+#include "plot/gnuplot.hpp"
 #include "io/point_reader.hpp"
 #include "reproduce/integration.hpp"
 #include "reproduce/reproduce.hpp"
 #include "sampling/experiment.hpp"
+#include "stats/distance_scale.hpp"
 #include "stats/point_set_statistics.hpp"
 #include "stats/realizations.hpp"
 #include "stats/spectrum.hpp"
@@ -75,6 +78,20 @@ const CLI::Validator kNoiseFrequency(
                          dfvn::kMaxNoiseFrequency, dfvn::quote_for_message(text));
     },
     "FREQUENCY");
+
+// stats --domain-side: a finite side in [2^-1000, 2^1000] (stats/distance_scale.hpp says why).
+const CLI::Validator kDomainSide(
+    [](std::string& text) -> std::string {
+      double value = 0.0;
+      if (!CLI::detail::lexical_cast(text, value)) return "must be a number, got " + dfvn::quote_for_message(text);
+      try {
+        dfvn::check_domain_side(value, "the side");
+      } catch (const std::invalid_argument& e) {
+        return e.what();
+      }
+      return {};
+    },
+    "SIDE");
 
 // CNJ's step scale: (0, 2^20] (sampling/curl_noise_jitter.hpp says why).
 const CLI::Validator kStepScale(
@@ -253,7 +270,7 @@ struct FieldCommand {
   }
 
   void run() {
-    if (output != "-") dfvn::check_writable(output);
+    dfvn::check_outputs({{"--output", output}});
     if (diagnose && (domain == "cube" || domain == "ball"))
       fail("--diagnose measures on uniform random points in R^N or on the torus: --domain free or torus");
     for (const CLI::Option* option : bound_options)
@@ -297,13 +314,11 @@ struct FieldCommand {
 };
 
 
-// Creates `dir` (and parents) and checks a file can be written in it.
-void make_output_dir(const std::string& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  if (error || !std::filesystem::is_directory(dir))
-    throw std::runtime_error("cannot create directory " + dfvn::quote_for_message(dir, dfvn::kMaxPathEchoChars));
-  dfvn::check_writable((std::filesystem::path(dir) / "probe").string());
+// The outputs of a reproduction: its files in `dir`, each named as "--out (table1.csv)" in messages.
+std::vector<std::pair<std::string, std::string>> files_in(const std::string& dir, const std::vector<std::string>& names) {
+  std::vector<std::pair<std::string, std::string>> outputs;
+  for (const std::string& name : names) outputs.emplace_back("--out (" + name + ")", (std::filesystem::path(dir) / name).string());
+  return outputs;
 }
 
 struct SampleCommand {
@@ -508,22 +523,20 @@ struct SampleCommand {
     config.compute_statistics = !no_stats;
     config.compute_rdf = !rdf_path.empty();
     config.validate();
+    dfvn::check_seed_range(common.seed, static_cast<std::uint64_t>(realizations), "--seed", "--realizations");
     check_output_options();
 
     // Check every destination before the work starts; each file is then written whole or not at all.
     std::vector<std::pair<std::string, std::string>> outputs;
-    if (!no_stats) outputs.emplace_back("--stats", stats_path);
+    if (!no_stats)
+      outputs.emplace_back(stats_option->count() > 0 ? "--stats" : "the statistics (default --stats -)", stats_path);
     if (!rdf_path.empty()) outputs.emplace_back("--rdf", rdf_path);
     if (!json_path.empty()) outputs.emplace_back("--json", json_path);
-    if (!points_dir.empty() && points_dir != "-")
+    if (points_dir == "-") outputs.emplace_back("--points", points_dir);
+    const bool points_to_files = !points_dir.empty() && points_dir != "-";
+    if (points_to_files)
       for (dfvn::Method m : config.methods) outputs.emplace_back("--points (" + point_file_name(m) + ")", point_file(m));
-    dfvn::check_distinct_outputs(outputs);
-    for (const auto& [option, path] : outputs)
-      if (!option.starts_with("--points")) dfvn::check_writable(path);
-    if (!points_dir.empty() && points_dir != "-") {
-      make_output_dir(points_dir);
-      for (dfvn::Method m : config.methods) dfvn::check_writable(point_file(m));
-    }
+    dfvn::check_outputs(outputs, points_to_files ? std::vector<std::string>{points_dir} : std::vector<std::string>{});
     for (const std::string& warning : dfvn::sampling_warnings(config)) std::fprintf(stderr, "%s: warning: %s\n", kProgram, warning.c_str());
 
     const dfvn::PointFormat point_format = dfvn::parse_point_format(format);
@@ -562,7 +575,7 @@ struct SampleCommand {
     if (!no_stats) dfvn::write_file_atomically(stats_path, stats);
   }
 
-  // Options that only make sense together, and outputs that would share standard output.
+  // Options that only make sense together (the outputs themselves: dfvn::check_outputs).
   void check_output_options() const {
     if (format_option->count() > 0 && points_dir.empty())
       throw std::invalid_argument("--format " + format + " applies to --points, which is not given");
@@ -574,16 +587,6 @@ struct SampleCommand {
     if (points_dir == "-" && config.methods.size() != 1)
       throw std::invalid_argument(fmt::format("--points - writes one point set to standard output; --methods names {}",
                                               config.methods.size()));
-    // Two CSVs on one standard output would interleave.
-    std::vector<std::string> on_stdout;
-    if (!no_stats && stats_path == "-") on_stdout.push_back(stats_option->count() > 0 ? "--stats -" : "the statistics (default --stats -)");
-    if (rdf_path == "-") on_stdout.push_back("--rdf -");
-    if (points_dir == "-") on_stdout.push_back("--points -");
-    if (json_path == "-") on_stdout.push_back("--json -");
-    if (on_stdout.size() > 1)
-      throw std::invalid_argument(fmt::format("{} and {} would both write to standard output; send one to a file{}",
-                                              on_stdout[0], on_stdout[1],
-                                              on_stdout[0].starts_with("the statistics") ? " (-o FILE) or use --no-stats" : ""));
   }
 
   // With -n, PDS that saturated before the count: say so (the saturated column has it in every run).
@@ -722,7 +725,8 @@ struct ReproduceCommand {
     study.seed = common3.seed;
     study.threads = common3.threads;
     study.validate();
-    make_output_dir(study.out_dir);
+    dfvn::check_figure_prerequisites();  // before the output folder is made
+    dfvn::check_outputs(files_in(study.out_dir, dfvn::cnj_study_output_files()), {study.out_dir});
     dfvn::ProgressReporter* reporter = progress.make();
     const auto result = dfvn::run_cnj_study(study, reporter->callback());
     reporter->complete();
@@ -757,7 +761,8 @@ struct ReproduceCommand {
     for (const auto& name : CLI::detail::split(integration_methods, ','))
       integration.methods.push_back(dfvn::parse_method(CLI::detail::trim_copy(name)));
     integration.validate();
-    make_output_dir(integration.out_dir);
+    dfvn::check_figure_prerequisites();  // before the output folder is made
+    dfvn::check_outputs(files_in(integration.out_dir, dfvn::integration_output_files(integration)), {integration.out_dir});
     dfvn::ProgressReporter* reporter = progress.make();
     const auto result = dfvn::run_integration(integration, reporter->callback());
     reporter->complete();
@@ -774,7 +779,9 @@ struct ReproduceCommand {
     config.threads = common1.threads;
     config.out_dir = out1;
     config.realizations = table1_realizations;
-    make_output_dir(out1);
+    config.validate();
+    dfvn::check_figure_prerequisites();  // before the output folder is made
+    dfvn::check_outputs(files_in(out1, dfvn::table1_output_files()), {out1});
     dfvn::ProgressReporter* reporter = progress.make();
     const auto result = dfvn::run_table1(config, reporter->callback());
     reporter->complete();
@@ -797,7 +804,8 @@ struct ReproduceCommand {
     config.seed = common2.seed;
     config.threads = common2.threads;
     table2.validate();
-    make_output_dir(out2);
+    dfvn::check_figure_prerequisites();  // before the output folder is made
+    dfvn::check_outputs(files_in(out2, dfvn::table2_output_files(table2)), {out2});
     dfvn::ProgressReporter* reporter = progress.make();
     const auto result = dfvn::run_table2(table2, reporter->callback());
     reporter->complete();
@@ -819,6 +827,7 @@ struct StatsCommand {
   bool no_timing = false;
   bool periodic = false;
   ProgressOptions progress;
+  CLI::Option* output_option = nullptr;
 
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
@@ -832,7 +841,9 @@ struct StatsCommand {
         ->check(CLI::ExistingFile);
     cmd->add_option("--format", format, "csv, npy or dat; default: from the extension (.txt = dat)")
         ->check(CLI::IsMember({"csv", "npy", "dat"}));
-    cmd->add_option("--domain-side", domain_side, "The points lie in [0, S]^N")->capture_default_str()->check(kPositiveFinite);
+    cmd->add_option("--domain-side", domain_side, "The points lie in [0, S]^N, S in [2^-1000, 2^1000]")
+        ->capture_default_str()
+        ->check(kDomainSide);
     cmd->add_flag("--discrepancy", discrepancy, "Also compute the four L2 discrepancies (O(points^2) work)");
     cmd->add_option("--knn", knn, "KD-tree backend: nanoflann or flann (not used with --periodic)")
         ->capture_default_str()
@@ -840,7 +851,7 @@ struct StatsCommand {
     cmd->add_flag("--periodic", periodic,
                   "Measure on the torus [0,S)^N: minimum-image nearest-neighbour distances (opposite faces\n"
                   "identified), as for sets made periodic (dfvn-sample --domain torus, UTK's periodic samplers)");
-    cmd->add_option("-o,--output", output, "Statistics CSV ('-' = standard output)")->capture_default_str();
+    output_option = cmd->add_option("-o,--output", output, "Statistics CSV ('-' = standard output)")->capture_default_str();
     cmd->add_option("--json", json_path, "Also write the statistics as JSON ('-' = standard output)");
     cmd->add_flag("--no-timing", no_timing, "Leave seconds_stats empty (and out of --json): identical files for identical input");
     cmd->add_option("--spectrum", spectrum_prefix,
@@ -866,16 +877,18 @@ struct StatsCommand {
     } catch (const std::exception& e) {
       fail(input + (sets.empty() ? ", " : fmt::format(", set {}: ", sets.size() - 1)) + e.what());
     }
-    if (output == "-" && json_path == "-")
-      fail("the statistics (--output -) and --json - would both write to standard output; send one to a file");
-    if (!json_path.empty()) dfvn::check_distinct_outputs({{"--output", output}, {"--json", json_path}});
-    dfvn::check_writable(output);
-    if (!json_path.empty()) dfvn::check_writable(json_path);
-    if (!spectrum_prefix.empty()) {
-      if (sets.front().dimension != 2 && sets.front().dimension != 3)
-        fail(fmt::format("--spectrum needs 2D or 3D points; '{}' holds {}D points", input, sets.front().dimension));
-      dfvn::check_writable(spectrum_prefix + ".csv");
-    }
+    if (!spectrum_prefix.empty() && sets.front().dimension != 2 && sets.front().dimension != 3)
+      fail(fmt::format("--spectrum needs 2D or 3D points; '{}' holds {}D points", input, sets.front().dimension));
+    // Every output, checked together before the work: --output, --json and the spectrum's three files.
+    std::vector<std::pair<std::string, std::string>> outputs = {
+        {output_option->count() > 0 ? "--output" : "the statistics (default --output -)", output}};
+    if (!json_path.empty()) outputs.emplace_back("--json", json_path);
+    if (!spectrum_prefix.empty())
+      for (const std::string& suffix : dfvn::spectrum_file_suffixes())
+        outputs.emplace_back("--spectrum (" + std::filesystem::path(spectrum_prefix + suffix).filename().string() + ")",
+                             spectrum_prefix + suffix);
+    dfvn::check_outputs(outputs);
+    if (!spectrum_prefix.empty()) dfvn::check_figure_prerequisites();
     dfvn::PointSetStatisticsOptions options;
     options.discrepancy = discrepancy;
     options.knn = dfvn::parse_knn_backend(knn);

@@ -39,6 +39,7 @@ struct SampleArguments {
   std::string domain_mode;
   std::optional<std::string> bound;
   int threads = 0;
+  double max_memory_gib = 0.0;
 };
 
 SampleConfig sample_config(const SampleArguments& a) {
@@ -76,6 +77,7 @@ SampleConfig sample_config(const SampleArguments& a) {
       throw py::value_error("bound applies to conformant cnj in domain 'cube' or 'ball'");
     config.cnj.bound = parse_bound(*a.bound);
   }
+  config.max_memory_gib = a.max_memory_gib;
   return config;
 }
 
@@ -111,9 +113,10 @@ void bind_sampling(py::module_& module) {
          const std::string& protocol, bool scramble, double radius, int ncandidates, const std::string& noise,
          double frequency, double step_scale, const std::string& integrator, const std::string& reprojection, int steps,
          const std::optional<std::string>& domain, const std::string& domain_mode, const std::optional<std::string>& bound,
-         int threads) {
+         int threads, double max_memory_gib) {
         return sample(SampleArguments{method, dim, grid, n, seed, protocol, scramble, radius, ncandidates, noise, frequency,
-                                      step_scale, integrator, reprojection, steps, domain, domain_mode, bound, threads});
+                                      step_scale, integrator, reprojection, steps, domain, domain_mode, bound, threads,
+                                      max_memory_gib});
       },
       "method"_a, "dim"_a, py::kw_only(), "grid"_a = py::none(), "n"_a = py::none(), "seed"_a = 1,
       "protocol"_a = "unit", "scramble"_a = true, "radius"_a = 0.0, "ncandidates"_a = 30,
@@ -121,7 +124,7 @@ void bind_sampling(py::module_& module) {
       "integrator"_a = std::string(to_string(cnj.trace.integrator)),
       "reprojection"_a = std::string(to_string(cnj.trace.reprojection)), "steps"_a = CnjOptions::kStepsByDomainMode,
       "domain"_a = py::none(), "domain_mode"_a = std::string(to_string(cnj.domain_mode)), "bound"_a = py::none(),
-      "threads"_a = 0,
+      "threads"_a = 0, "max_memory_gib"_a = 0.0,
       R"(One point set as an (n, dim) float64 array, the same bits as `dfvn-sample --points DIR --format npy`.
 
 method: 'cnj' (curl noise jittering), 'jitter', 'jitter-matched' (jitter at CNJ's RMS displacement),
@@ -139,7 +142,8 @@ field, every point kept), 'cube' or 'ball'; None: the torus, or the cube with dr
 domain_mode: 'conformant' (the field bounded by the domain, every point kept) or 'drop' (the free field,
 points that leave are dropped; not on the torus); bound: how the bounded field meets the cube's or
 ball's boundary, 'eq13' (None: the default) or 'ramp'.
-threads: 0 = all cores (the result never depends on it).)");
+threads: 0 = all cores (the result never depends on it). max_memory_gib: the memory the set may
+need, in GiB (0: 80% of the machine's); a larger set raises ValueError before any work.)");
 }
 
 }  // namespace dfvn::python

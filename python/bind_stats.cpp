@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 
 #include "core/dimension.hpp"
+#include "stats/distance_scale.hpp"
 #include "stats/point_set_statistics.hpp"
 #include "stats/radial_distribution.hpp"
 #include "numpy_points.hpp"
@@ -16,11 +17,11 @@ namespace dfvn::python {
 namespace {
 
 // The library's statistics take an owning PointSet: the points are copied once, O(n N) next to the
-// O(n log n) KD-tree work that follows. Throws std::invalid_argument for a point outside [0, side]^N.
+// O(n log n) KD-tree work that follows. Throws std::invalid_argument for a side outside [2^-1000, 2^1000]
+// (stats/distance_scale.hpp) or a point outside [0, side]^N.
 PointSet point_set(const PointRows& in, double domain_side) {
+  check_domain_side(domain_side, "domain_side");
   PointSet points{in.dimension, std::vector<double>(in.data, in.data + in.rows * in.dimension), Box{0.0, domain_side}};
-  if (!(domain_side > 0.0) || !std::isfinite(domain_side))
-    throw py::value_error("domain_side must be a finite number > 0, got " + std::to_string(domain_side));
   check_point_set(points);
   return points;
 }

@@ -2,7 +2,49 @@
 // Names follow scipy.stats.qmc where it has one (n, seed, scramble, radius, ncandidates).
 #include <pybind11/pybind11.h>
 
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include "io/csv.hpp"
+
 namespace dfvn::python {
+
+// The library's messages name the command line's options ("--grid 4", "-n 1000"); here each becomes
+// the keyword argument that sets the same value, so that a Python caller is never told about an
+// option it cannot give ("--grid 4" becomes "grid=4"). An option is replaced where it stands as a
+// word: after the start, a space, '(' or a quote, and before a character that cannot continue its name.
+std::string python_message(std::string message) {
+  static const std::pair<std::string_view, std::string_view> kKeywords[] = {
+      {"--dim", "dim"},           {"--grid", "grid"},           {"-n", "n"},
+      {"--seed", "seed"},         {"--threads", "threads"},     {"--methods", "method"},
+      {"--frequency", "frequency"}, {"--step-scale", "step_scale"}, {"--steps", "steps"},
+      {"--noise", "noise"},       {"--integrator", "integrator"}, {"--reproject", "reprojection"},
+      {"--protocol", "protocol"}, {"--scramble", "scramble"},   {"--pds-radius", "radius"},
+      {"--pds-candidates", "ncandidates"}, {"--max-memory GIB", "max_memory_gib"},
+      {"--max-memory", "max_memory_gib"}, {"--domain-side", "domain_side"}, {"--rdf-max", "r_max"},
+      {"--rdf-bins", "bins"},     {"--rdf-queries", "max_queries"}, {"--knn", "knn"}};
+  auto continues_name = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '_'; };
+  for (const auto& [option, keyword] : kKeywords) {
+    for (std::size_t at = message.find(option); at != std::string::npos; at = message.find(option, at)) {
+      const bool starts = at == 0 || message[at - 1] == ' ' || message[at - 1] == '(' || message[at - 1] == '\'';
+      const std::size_t end = at + option.size();
+      if (starts && (end == message.size() || !continues_name(message[end]))) {
+        // "--grid 4" reads "grid=4", as the call would write it.
+        const bool valued = end + 1 < message.size() && message[end] == ' ' &&
+                            std::string_view("0123456789-.'").find(message[end + 1]) != std::string_view::npos;
+        const std::string replacement = std::string(keyword) + (valued ? "=" : "");
+        message.replace(at, option.size() + (valued ? 1 : 0), replacement);
+        at += replacement.size();
+      } else {
+        at += option.size();
+      }
+    }
+  }
+  return message;
+}
+
 void bind_field(pybind11::module_& module);
 void bind_sampling(pybind11::module_& module);
 void bind_stats(pybind11::module_& module);
@@ -14,6 +56,16 @@ PYBIND11_MODULE(dfvn, module) {
       "(after 'Improving Curl Noise', SIGGRAPH Asia 2025). Point sets are (points, N) float64 arrays;\n"
       "results depend only on the inputs and the seed, never on the thread count.";
   module.attr("__version__") = DFVN_VERSION;
+  // Bad values raise ValueError with the library's message, in the keywords' names.
+  pybind11::register_exception_translator([](std::exception_ptr thrown) {
+    try {
+      if (thrown) std::rethrow_exception(thrown);
+    } catch (const std::invalid_argument& e) {
+      PyErr_SetString(PyExc_ValueError, dfvn::python::python_message(e.what()).c_str());
+    } catch (const dfvn::InputError& e) {
+      PyErr_SetString(PyExc_ValueError, dfvn::python::python_message(e.what()).c_str());
+    }
+  });
   dfvn::python::bind_field(module);
   dfvn::python::bind_sampling(module);
   dfvn::python::bind_stats(module);

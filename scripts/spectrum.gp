@@ -3,6 +3,7 @@
 # (src/plot/gnuplot.hpp), which runs it as
 #   gnuplot -c spectrum.gp OUT.png PREFIX.csv PREFIX_radial.csv DIM
 # PREFIX.csv: k0,k1[,k2],power with k0 varying fastest; PREFIX_radial.csv: frequency,power,anisotropy_db,...
+# (anisotropy_db empty where it is not defined)
 dim = int(ARG4)
 power_floor = 1e-3  # the colour scale's floor: a periodogram can be 0 at a frequency
 set datafile separator comma
@@ -22,8 +23,16 @@ set logscale cb; set cbrange [0.01:*]; set palette defined (0 'black', 1 '#1f3f9
 plot $plane using 1:2:3 with image notitle
 unset logscale cb; set size noratio
 set title 'radial average and anisotropy'
-set xlabel '|k|'; set ylabel 'P'; set y2label 'anisotropy (dB)'; set ytics nomirror; set y2tics; set grid
-plot ARG3 skip 1 using 1:2 with lines linewidth 2 linecolor rgb '#1f5fbf' title 'radial mean', \
-     1 with lines dashtype 3 linecolor rgb 'gray40' title 'random = 1', \
-     ARG3 skip 1 using 1:3 axes x1y2 with lines linecolor rgb '#d62728' title 'anisotropy (dB)'
+set xlabel '|k|'; set ylabel 'P'; set grid
+# The anisotropy is empty where a shell's power is constant (identical points): draw it where it exists.
+stats ARG3 skip 1 using (valid(3) ? 1 : 0) nooutput
+if (STATS_sum > 0) {
+  set y2label 'anisotropy (dB)'; set ytics nomirror; set y2tics
+  plot ARG3 skip 1 using 1:2 with lines linewidth 2 linecolor rgb '#1f5fbf' title 'radial mean', \
+       1 with lines dashtype 3 linecolor rgb 'gray40' title 'random = 1', \
+       ARG3 skip 1 using 1:3 axes x1y2 with lines linecolor rgb '#d62728' title 'anisotropy (dB)'
+} else {
+  plot ARG3 skip 1 using 1:2 with lines linewidth 2 linecolor rgb '#1f5fbf' title 'radial mean (constant: no anisotropy)', \
+       1 with lines dashtype 3 linecolor rgb 'gray40' title 'random = 1'
+}
 unset multiplot

@@ -49,7 +49,8 @@ struct TraceStats {
   // Updates not taken: rank-deficient or ill-conditioned Jacobian, non-finite, longer than
   // max_update_ratio x step, or raising the residual.
   std::int64_t skipped_updates = 0;
-  // Evaluations beyond the edge of the noise domain, where a trace stops (noise/noise_domain.hpp).
+  // Steps that reached beyond the edge of the noise domain (noise/noise_domain.hpp), and evaluations
+  // there: a trace stops before such a step, at the last point whose step stayed inside.
   std::int64_t outside_domain = 0;
 
   TraceStats& operator+=(const TraceStats& other) {
@@ -70,8 +71,9 @@ class Tracer {
   Tracer(const DfvnField<N>& field, const TraceOptions& options);
 
   // Algorithm 1: trace x0 for time t (t may be negative: backwards) in options.steps steps. A trace
-  // that reaches the edge of the noise domain (noise/noise_domain.hpp) stops there, counted in
-  // TraceStats::outside_domain; x0 itself must be inside.
+  // whose next step would reach beyond the edge of the noise domain (noise/noise_domain.hpp) stops
+  // before it, counted in TraceStats::outside_domain, so the result is always inside; x0 itself must
+  // be inside.
   Vec<N> trace(const Vec<N>& x0, double time, TraceStats* stats = nullptr) const;
 
   // Moves x back onto the iso-contours f(x) = tau with the configured policy, taking no update

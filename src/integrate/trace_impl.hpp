@@ -23,9 +23,9 @@ double iso_residual(const FieldSample<N>& sample, const std::array<double, N - 1
 
 // The noise is defined only where every |F x_j| < kMaxNoiseArgument (noise/noise_domain.hpp). Callers
 // check that traces start inside; a trace that still reaches the edge (an extreme step) sees beyond it
-// a zero field with NaN values: the point stops moving there, and every reprojection update across
-// the edge is rejected (a NaN residual never compares as an improvement). So the noise is never
-// evaluated outside its domain, and the returned points stay finite.
+// a zero field with NaN values: every reprojection update across the edge is rejected (a NaN residual
+// never compares as an improvement), and a step with a stage or its end beyond the edge is not taken
+// (trace_with). So the noise is never evaluated outside its domain, and a trace ends inside it.
 // With Velocity::skip only the f_i and their gradients are computed (the reprojection's evaluations:
 // the cross product was a third of their cost in 7D); the velocity is then NaN inside the domain.
 enum class Velocity { compute, skip };
@@ -128,6 +128,7 @@ Vec<N> Tracer<N>::trace_with(const Tracer& self, const Vec<N>& x0, double time, 
   const std::array<double, N - 1> tau = current.value;
   for (int k = 0; k < steps; ++k) {
     const Vec<N> before_step = x;
+    const std::int64_t outside_before = stats.outside_domain;
     if constexpr (I == Integrator::euler) {
       x += h * current.velocity;  // Eq. (9)
     } else {
@@ -136,6 +137,13 @@ Vec<N> Tracer<N>::trace_with(const Tracer& self, const Vec<N>& x0, double time, 
       const Vec<N> k3 = evaluate_counted(self.field_, Vec<N>(x + 0.5 * h * k2), stats).velocity;
       const Vec<N> k4 = evaluate_counted(self.field_, Vec<N>(x + h * k3), stats).velocity;
       x += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    }
+    // A step that reached beyond the edge of the noise domain (a stage evaluated there, or the step's
+    // end) is not taken: the trace stops at the last point whose step stayed inside, rather than at a
+    // point outside the domain computed from the zero field beyond it.
+    if (stats.outside_domain != outside_before || !self.field_.in_domain(x)) [[unlikely]] {
+      if (stats.outside_domain == outside_before) ++stats.outside_domain;
+      return before_step;
     }
     const bool last = (k + 1 == steps);
     if constexpr (R == Reprojection::none) {

@@ -10,6 +10,7 @@
 #include <iostream>
 #include <stdexcept>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "core/message_text.hpp"
@@ -30,24 +31,29 @@ std::string temporary_name(const std::string& path) { return path + ".tmp." + st
 
 // ---- The registry of live temporaries, read by the signal handler ----
 // Fixed storage and lock-free atomics only: a handler may not allocate or lock. A slot is free (0),
-// being filled (1) or holds a path to remove (2).
+// being filled (1) or holds a path to remove (2); `directory` says how.
 constexpr int kTemporarySlots = 64;
 constexpr std::size_t kMaxTemporaryPath = 4096;
 struct TemporarySlot {
   std::atomic<int> state{0};
+  bool directory = false;
   char path[kMaxTemporaryPath];
 };
 TemporarySlot g_temporaries[kTemporarySlots];
 static_assert(std::atomic<int>::is_always_lock_free);
+// The child process to kill before removing temporaries (0: none).
+std::atomic<pid_t> g_child{0};
+static_assert(std::atomic<pid_t>::is_always_lock_free);
 
 // Returns the slot, or -1 when the path is too long or every slot is taken (then only the
 // destructor removes the temporary).
-int register_temporary(const std::string& path) {
+int register_temporary(const std::string& path, bool directory = false) {
   if (path.size() >= kMaxTemporaryPath) return -1;
   for (int i = 0; i < kTemporarySlots; ++i) {
     int expected = 0;
     if (g_temporaries[i].state.compare_exchange_strong(expected, 1)) {
       std::memcpy(g_temporaries[i].path, path.c_str(), path.size() + 1);
+      g_temporaries[i].directory = directory;
       g_temporaries[i].state.store(2);
       return i;
     }
@@ -59,13 +65,23 @@ void unregister_temporary(int slot) {
   if (slot >= 0) g_temporaries[slot].state.store(0);
 }
 
+// Async-signal-safe throughout: kill, waitpid, unlink and rmdir.
 void remove_registered_temporaries() {
+  if (const pid_t child = g_child.exchange(0); child > 0) {
+    ::kill(child, SIGKILL);
+    while (::waitpid(child, nullptr, 0) < 0 && errno == EINTR) {
+    }
+  }
   for (TemporarySlot& slot : g_temporaries)
-    if (slot.state.load() == 2) ::unlink(slot.path);  // unlink is async-signal-safe
+    if (slot.state.load() == 2 && !slot.directory) ::unlink(slot.path);
+  for (TemporarySlot& slot : g_temporaries)
+    if (slot.state.load() == 2 && slot.directory) ::rmdir(slot.path);
 }
 
 extern "C" void remove_temporaries_and_die(int signal_number) {
+  const int saved_errno = errno;
   remove_registered_temporaries();
+  errno = saved_errno;
   std::signal(signal_number, SIG_DFL);
   std::raise(signal_number);
 }
@@ -221,6 +237,40 @@ void check_distinct_outputs(const std::vector<std::pair<std::string, std::string
         throw std::invalid_argument(outputs[j].first + " and " + outputs[i].first + " would write the same file " +
                                     quoted_path(outputs[i].second) + "; give them different paths");
 }
+
+void make_output_directory(const std::string& dir) {
+  std::error_code error;
+  fs::create_directories(dir, error);
+  if (error || !fs::is_directory(dir)) throw std::runtime_error("cannot create directory " + quoted_path(dir));
+  check_writable((fs::path(dir) / "probe").string());
+}
+
+void check_outputs(const std::vector<std::pair<std::string, std::string>>& outputs,
+                   const std::vector<std::string>& directories) {
+  // Two outputs on one standard output would interleave. "--rdf -" names an option as given; a
+  // description in parentheses ("the statistics (default --stats -)") already says it.
+  const auto as_given = [](const std::string& option) { return option.ends_with(")") ? option : option + " -"; };
+  const std::string* on_stdout = nullptr;
+  for (const auto& [option, path] : outputs)
+    if (path == "-") {
+      if (on_stdout)
+        throw std::invalid_argument(as_given(*on_stdout) + " and " + as_given(option) +
+                                    " would both write to standard output; send one to a file");
+      on_stdout = &option;
+    }
+  check_distinct_outputs(outputs);
+  for (const std::string& dir : directories) make_output_directory(dir);
+  for (const auto& [option, path] : outputs) check_writable(path);
+}
+
+TemporaryRegistration::TemporaryRegistration(const std::string& path, Kind kind)
+    : slot_(register_temporary(path, kind == Kind::directory)) {}
+
+TemporaryRegistration::~TemporaryRegistration() { unregister_temporary(slot_); }
+
+ChildRegistration::ChildRegistration(int pid) { g_child.store(pid); }
+
+ChildRegistration::~ChildRegistration() { g_child.store(0); }
 
 void remove_temporaries_on_signals() {
   struct sigaction action {};

@@ -10,7 +10,8 @@
 //    Such a target cannot be replaced: renaming over /dev/null replaced the machine's /dev/null.
 // A temporary is removed when its AtomicOutput is destroyed uncommitted (any error path) and, after
 // remove_temporaries_on_signals(), when the process is interrupted (SIGINT, SIGTERM, SIGHUP,
-// SIGPIPE), which then dies of that signal as usual (shell status 128 + signal: 130, 143).
+// SIGPIPE), which then dies of that signal as usual (shell status 128 + signal: 130, 143). Other
+// temporaries (a work directory) and a child process join the same cleanup by registration.
 #pragma once
 
 #include <fstream>
@@ -66,6 +67,46 @@ void check_writable(const std::string& path);
 // same file (through links or different spellings): one would silently replace the other. Outputs
 // written through (devices such as /dev/null, FIFOs) may be shared.
 void check_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs);
+
+// Creates the directory `dir` with its parents and checks that a file can be written in it. Throws
+// std::runtime_error naming it.
+void make_output_directory(const std::string& dir);
+
+// The one check of a run's outputs, made by every subcommand before its work starts. `outputs` are
+// (option, path) pairs, e.g. {"--json", "run.json"} or {"--spectrum (P.csv)", "P.csv"}; `directories`
+// are the folders the run writes into, which are created here once the outputs are known not to clash
+// (outputs inside them are checked after). Refuses, with std::invalid_argument naming both options,
+// two outputs on standard output ("-") and two on the same file (check_distinct_outputs); then
+// creates the directories and checks that each output can be written (check_writable).
+void check_outputs(const std::vector<std::pair<std::string, std::string>>& outputs,
+                   const std::vector<std::string>& directories = {});
+
+// Temporaries that library code keeps outside AtomicOutput (the figures' gnuplot work directory and
+// its files): while a registration lives, the signal handlers and the exit handler of
+// remove_temporaries_on_signals() remove the path (directories after files, so a directory holding
+// only registered files goes too). The registration does not create or remove anything itself.
+class TemporaryRegistration {
+ public:
+  enum class Kind { file, directory };
+  TemporaryRegistration(const std::string& path, Kind kind);
+  ~TemporaryRegistration();
+  TemporaryRegistration(const TemporaryRegistration&) = delete;
+  TemporaryRegistration& operator=(const TemporaryRegistration&) = delete;
+
+ private:
+  int slot_ = -1;
+};
+
+// A child process (gnuplot) that the signal handlers kill (SIGKILL) and reap before they remove the
+// temporaries, so that it neither outlives the interrupted program nor writes into a directory being
+// removed. At most one child is registered at a time.
+class ChildRegistration {
+ public:
+  explicit ChildRegistration(int pid);
+  ~ChildRegistration();
+  ChildRegistration(const ChildRegistration&) = delete;
+  ChildRegistration& operator=(const ChildRegistration&) = delete;
+};
 
 // Installs handlers that delete every live temporary on SIGINT, SIGTERM, SIGHUP and SIGPIPE and then
 // die of the signal; signals that are ignored (nohup, background jobs) stay ignored. For programs,

@@ -62,24 +62,36 @@ std::vector<std::string> split_fields(std::string_view line, std::size_t line_nu
   return fields;
 }
 
-enum class ParseResult { ok, not_a_number, out_of_range, not_finite };
+}  // namespace
 
-ParseResult parse_double(std::string_view text, double& value) {
-  // from_chars takes no '+'; allow one, but not a second sign ("+-1").
+NumberText parse_coordinate(std::string_view text, double& value) {
+  // from_chars takes no '+'; allow one, but not a second sign ("+-1", "++1").
   if (!text.empty() && text.front() == '+') {
     text.remove_prefix(1);
-    if (!text.empty() && (text.front() == '+' || text.front() == '-')) return ParseResult::not_a_number;
+    if (!text.empty() && (text.front() == '+' || text.front() == '-')) return NumberText::not_a_number;
   }
   const char* end = text.data() + text.size();
   const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  if (text.empty() || ptr != end) return ParseResult::not_a_number;
-  if (ec == std::errc::result_out_of_range) return ParseResult::out_of_range;
-  if (ec != std::errc()) return ParseResult::not_a_number;
-  if (!std::isfinite(value)) return ParseResult::not_finite;
-  return ParseResult::ok;
+  if (text.empty() || ptr != end) return NumberText::not_a_number;
+  if (ec == std::errc::result_out_of_range) return NumberText::out_of_range;
+  if (ec != std::errc()) return NumberText::not_a_number;
+  if (!std::isfinite(value)) return NumberText::not_finite;
+  return NumberText::ok;
 }
 
-}  // namespace
+std::string coordinate_error(NumberText problem, std::size_t line, std::size_t column, std::string_view text) {
+  const std::string bad = quote_for_message(text);
+  switch (problem) {
+    case NumberText::not_finite:
+      return fmt::format("line {}, column {}: {} is not a finite number (NaN and Inf are not allowed)", line, column, bad);
+    case NumberText::out_of_range:
+      return fmt::format("line {}, column {}: {} is out of the range of a double", line, column, bad);
+    case NumberText::not_a_number:
+    case NumberText::ok:
+      break;
+  }
+  return fmt::format("line {}, column {}: {} is not a number", line, column, bad);
+}
 
 PointTable read_points_csv(std::istream& in, int dimension) {
   if (dimension < 1 || dimension > 16)
@@ -100,34 +112,24 @@ PointTable read_points_csv(std::istream& in, int dimension) {
     double values[16];
     int non_numeric = 0;
     std::size_t first_bad = 0;
-    ParseResult first_problem = ParseResult::ok;
+    NumberText first_problem = NumberText::ok;
     for (std::size_t j = 0; j < fields.size(); ++j) {
-      const ParseResult r = parse_double(fields[j], values[j]);
-      if (r != ParseResult::ok) {
-        if (first_problem == ParseResult::ok) {
+      const NumberText r = parse_coordinate(fields[j], values[j]);
+      if (r != NumberText::ok) {
+        if (first_problem == NumberText::ok) {
           first_problem = r;
           first_bad = j;
         }
-        non_numeric += (r == ParseResult::not_a_number);
+        non_numeric += (r == NumberText::not_a_number);
       }
     }
-    if (first_problem == ParseResult::ok) {
+    if (first_problem == NumberText::ok) {
       table.coordinates.insert(table.coordinates.end(), values, values + dimension);
       continue;
     }
     // The first line may be a header: no field of it a number, quoted or not ("0.1" is a number).
     if (line_number == 1 && non_numeric == dimension) continue;
-    const std::string bad = quote_for_message(fields[first_bad]);
-    switch (first_problem) {
-      case ParseResult::not_finite:
-        throw InputError(fmt::format("line {}, column {}: {} is not a finite number (NaN and Inf are not allowed)",
-                                     line_number, first_bad + 1, bad));
-      case ParseResult::out_of_range:
-        throw InputError(fmt::format("line {}, column {}: {} is out of the range of a double", line_number,
-                                     first_bad + 1, bad));
-      default:
-        throw InputError(fmt::format("line {}, column {}: {} is not a number", line_number, first_bad + 1, bad));
-    }
+    throw InputError(coordinate_error(first_problem, line_number, first_bad + 1, fields[first_bad]));
   }
   if (in.bad()) throw InputError("read error");
   return table;
@@ -174,18 +176,11 @@ PointTable read_points_whitespace(std::istream& in, int dimension, bool inferred
                                    fields.size()));
     double values[16];
     int non_numeric = 0;
-    for (std::size_t j = 0; j < fields.size(); ++j) non_numeric += parse_double(fields[j], values[j]) == ParseResult::not_a_number;
+    for (std::size_t j = 0; j < fields.size(); ++j) non_numeric += parse_coordinate(fields[j], values[j]) == NumberText::not_a_number;
     if (first && non_numeric == dimension) continue;  // a header line
     for (std::size_t j = 0; j < fields.size(); ++j) {
-      const ParseResult r = parse_double(fields[j], values[j]);
-      const std::string bad = quote_for_message(fields[j]);
-      if (r == ParseResult::not_finite)
-        throw InputError(fmt::format("line {}, column {}: {} is not a finite number (NaN and Inf are not allowed)",
-                                     line_number, j + 1, bad));
-      if (r == ParseResult::out_of_range)
-        throw InputError(fmt::format("line {}, column {}: {} is out of the range of a double", line_number, j + 1, bad));
-      if (r != ParseResult::ok)
-        throw InputError(fmt::format("line {}, column {}: {} is not a number", line_number, j + 1, bad));
+      const NumberText r = parse_coordinate(fields[j], values[j]);
+      if (r != NumberText::ok) throw InputError(coordinate_error(r, line_number, j + 1, fields[j]));
     }
     table.coordinates.insert(table.coordinates.end(), values, values + dimension);
   }
@@ -237,6 +232,15 @@ std::string format_real(double value, int significant) {
   std::string text = fmt::format("{:.{}g}", value, significant);
   if (std::isfinite(value) && text.find_first_of(".e") == std::string::npos) text += ".0";
   return text;
+}
+
+std::string csv_quoted(std::string_view text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + '"';
 }
 
 std::string numbered_header(std::string_view prefix, int count, int first_index) {

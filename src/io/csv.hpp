@@ -24,6 +24,16 @@ struct PointTable {
   const double* row(std::size_t i) const { return coordinates.data() + i * dimension; }
 };
 
+// The one reader of a coordinate in every text point file (CSV, whitespace-separated, UTK's dat): an
+// optional sign ('+' or '-', only one), then the whole field as std::from_chars reads a double in
+// general format ("0.5", "-1e-3", ".5"; no hexadecimal, no spaces, nothing after the number).
+enum class NumberText { ok, not_a_number, out_of_range, not_finite };
+NumberText parse_coordinate(std::string_view text, double& value);
+
+// The InputError message for a field that is not ok, naming its line and column (1-based) and the
+// text, shortened and escaped (core/message_text.hpp): "line 3, column 2: '+-1' is not a number".
+std::string coordinate_error(NumberText problem, std::size_t line, std::size_t column, std::string_view text);
+
 // One point per line, `dimension` comma-separated finite numbers, each optionally in double quotes
 // ("0.5" is the number 0.5). The first line may be a header (no field of it a number, e.g.
 // "x0,x1,x2") and may start with a UTF-8 byte order mark; blank lines are skipped. Throws InputError
@@ -46,6 +56,10 @@ void append_double(std::string& out, double value);
 // leaves neither a decimal point nor an exponent, so a column never changes type between runs ("1.0"
 // beside "0.6", not "1").
 std::string format_real(double value, int significant = 9);
+
+// `text` as one CSV field (RFC 4180): in double quotes, each quote inside doubled, every other byte as
+// it is (commas, newlines and non-UTF-8 bytes are then part of the field), e.g. q"uo.csv -> "q""uo.csv".
+std::string csv_quoted(std::string_view text);
 
 // "x0,x1,...,x{n-1}" style header: prefix0,prefix1,...
 std::string numbered_header(std::string_view prefix, int count, int first_index = 0);

@@ -12,6 +12,12 @@ namespace {
 
 using nlohmann::ordered_json;
 
+// JSON text is Unicode: a string that is not valid UTF-8 (a file name with the byte 0xFF) has each
+// invalid byte written as U+FFFD, where nlohmann's default threw its own exception text.
+std::string dump(const ordered_json& value) {
+  return value.dump(2, ' ', false, ordered_json::error_handler_t::replace) + "\n";
+}
+
 template <typename T>
 void put_if(ordered_json& object, const char* key, const std::optional<T>& value) {
   if (value) object[key] = *value;
@@ -137,7 +143,7 @@ std::string sampling_json(const SampleConfig& config, const std::vector<Sampling
   out["parameters"] = std::move(parameters);
   out["results"] = std::move(results);
   if (realizations.size() > 1) out["summary"] = summary_json(members);
-  return out.dump(2) + "\n";
+  return dump(out);
 }
 
 std::string point_statistics_json(const PointStatisticsRun& run) {
@@ -169,7 +175,7 @@ std::string point_statistics_json(const PointStatisticsRun& run) {
   out["parameters"] = std::move(parameters);
   out["sets"] = std::move(sets);
   if (run.sets.size() > 1) out["summary"] = summary_json(members)["all"];
-  return out.dump(2) + "\n";
+  return dump(out);
 }
 
 }  // namespace dfvn

@@ -26,7 +26,8 @@ struct SamplingRealization {
 std::string sampling_json(const SampleConfig& config, const std::vector<SamplingRealization>& realizations, bool timing);
 
 // `dfvn-sample stats`: {"program", "version", "parameters": {"input", "format", "domain_side", ...},
-// "sets": [one object per set], "summary"} (summary with more than one set).
+// "sets": [one object per set], "summary"} (summary with more than one set). JSON strings are UTF-8:
+// bytes of `input` that are not valid UTF-8 are written as U+FFFD.
 struct PointStatisticsRun {
   std::string input;
   std::string format;

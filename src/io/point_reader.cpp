@@ -1,16 +1,19 @@
 #include "io/point_reader.hpp"
 
+#include <algorithm>
 #include <bit>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <regex>
 #include <sstream>
 
 #include <fmt/format.h>
+
+#include "core/message_text.hpp"
 
 namespace dfvn {
 
@@ -98,26 +101,18 @@ std::vector<PointTable> parse_dat(std::string_view bytes) {
     std::vector<double> values;
     std::istringstream fields(line);
     std::string field;
-    int column = 0;
     while (fields >> field) {
-      ++column;
       double value = 0.0;
-      const char* begin = field.c_str() + (field[0] == '+' ? 1 : 0);
-      char* end = nullptr;
-      errno = 0;
-      value = std::strtod(begin, &end);
-      if (end == begin || *end != '\0')
-        throw InputError(fmt::format("line {}, column {}: '{}' is not a number", line_number, column, field));
-      if (!std::isfinite(value) || errno == ERANGE)
-        throw InputError(fmt::format("line {}, column {}: '{}' is not a finite number", line_number, column, field));
+      const NumberText problem = parse_coordinate(field, value);  // the one number reader (io/csv.hpp)
+      if (problem != NumberText::ok) throw InputError(coordinate_error(problem, line_number, values.size() + 1, field));
       values.push_back(value);
     }
     if (dimension == 0) {
-      dimension = static_cast<int>(values.size());
+      dimension = static_cast<int>(std::min<std::size_t>(values.size(), 1u << 20));
       check_dimension(dimension, fmt::format("line {}", line_number));
       current.dimension = dimension;
     }
-    if (static_cast<int>(values.size()) != dimension)
+    if (values.size() != static_cast<std::size_t>(dimension))
       throw InputError(fmt::format("line {}: expected {} whitespace-separated numbers (as in the first point), found {}",
                                    line_number, dimension, values.size()));
     current.coordinates.insert(current.coordinates.end(), values.begin(), values.end());
@@ -127,8 +122,129 @@ std::vector<PointTable> parse_dat(std::string_view bytes) {
   return sets;
 }
 
+// The header of an .npy file: the Python dict literal {'descr': '<f8', 'fortran_order': False,
+// 'shape': (3, 2), } that numpy.save writes, read by a small strict scanner (no regular expressions:
+// libstdc++'s recurse once per character and overflow the stack on a long header).
+struct NpyHeader {
+  std::string descr;
+  bool fortran_order = false;
+  std::vector<std::uint64_t> shape;
+};
+
+// The shape for messages, as Python prints it: "(3, 2)", "(6,)", "()"; beyond 3 extents, their count.
+std::string shape_text(const std::vector<std::uint64_t>& shape) {
+  if (shape.size() == 1) return fmt::format("({},)", shape[0]);
+  if (shape.size() > 3) return fmt::format("({}, {}, {}, ... {} extents)", shape[0], shape[1], shape[2], shape.size());
+  std::string text = "(";
+  for (std::size_t i = 0; i < shape.size(); ++i) text += (i ? ", " : "") + std::to_string(shape[i]);
+  return text + ")";
+}
+
+class NpyHeaderScanner {
+ public:
+  explicit NpyHeaderScanner(std::string_view text) : text_(text) {}
+
+  NpyHeader parse() {
+    NpyHeader header;
+    bool has_descr = false, has_order = false, has_shape = false;
+    expect('{');
+    while (true) {
+      skip_space();
+      if (peek() == '}') break;
+      const std::string key = string_literal();
+      expect(':');
+      if (key == "descr") {
+        header.descr = string_literal();
+        has_descr = true;
+      } else if (key == "fortran_order") {
+        header.fortran_order = boolean();
+        has_order = true;
+      } else if (key == "shape") {
+        shape(header);
+        has_shape = true;
+      } else {
+        throw InputError("npy: header has a key " + quote_for_message(key) +
+                         " (allowed: 'descr', 'fortran_order', 'shape')");
+      }
+      skip_space();
+      if (peek() == ',') {
+        ++at_;
+        continue;
+      }
+      if (peek() != '}') fail("',' or '}'");
+    }
+    ++at_;
+    skip_space();
+    if (at_ != text_.size()) fail("the end of the header");
+    if (!has_descr) throw InputError("npy: header has no 'descr'");
+    if (!has_order) throw InputError("npy: header has no 'fortran_order'");
+    if (!has_shape) throw InputError("npy: header has no 'shape'");
+    return header;
+  }
+
+ private:
+  std::string_view text_;
+  std::size_t at_ = 0;
+
+  char peek() const { return at_ < text_.size() ? text_[at_] : '\0'; }
+  void skip_space() {
+    while (at_ < text_.size() && (text_[at_] == ' ' || text_[at_] == '\t' || text_[at_] == '\n' || text_[at_] == '\r')) ++at_;
+  }
+  [[noreturn]] void fail(std::string_view wanted) const {
+    throw InputError(fmt::format("npy: header is not a dict literal: expected {} at byte {} of the header", wanted, at_));
+  }
+  void expect(char c) {
+    skip_space();
+    if (peek() != c) fail(fmt::format("'{}'", c));
+    ++at_;
+  }
+  std::string string_literal() {
+    skip_space();
+    const char quote = peek();
+    if (quote != '\'' && quote != '"') fail("a quoted string");
+    const std::size_t end = text_.find(quote, at_ + 1);
+    if (end == std::string_view::npos) fail("a closing quote");
+    std::string value(text_.substr(at_ + 1, end - at_ - 1));
+    at_ = end + 1;
+    return value;
+  }
+  bool boolean() {
+    skip_space();
+    for (const auto& [word, value] : {std::pair{std::string_view("True"), true}, {std::string_view("False"), false}})
+      if (text_.substr(at_, word.size()) == word) {
+        at_ += word.size();
+        return value;
+      }
+    fail("True or False");
+  }
+  // (a, b), (a,) or (): extents in decimal digits, each at most 2^64 - 1.
+  void shape(NpyHeader& header) {
+    expect('(');
+    while (true) {
+      skip_space();
+      if (peek() == ')') break;
+      const std::size_t first = at_;
+      while (at_ < text_.size() && text_[at_] >= '0' && text_[at_] <= '9') ++at_;
+      if (at_ == first) fail("a shape extent (digits)");
+      std::uint64_t extent = 0;
+      const auto [ptr, error] = std::from_chars(text_.data() + first, text_.data() + at_, extent);
+      if (error != std::errc())
+        throw InputError("npy: shape extent " + quote_for_message(text_.substr(first, at_ - first)) +
+                         " is above 2^64 - 1");
+      header.shape.push_back(extent);
+      skip_space();
+      if (peek() == ',') {
+        ++at_;
+        continue;
+      }
+      if (peek() != ')') fail("',' or ')' in the shape");
+    }
+    ++at_;
+  }
+};
+
 // NPY format 1.0-3.0: magic "\x93NUMPY", major, minor, header length (2 bytes in 1.x, 4 in 2.x/3.x,
-// little endian), a Python dict literal {'descr': ..., 'fortran_order': ..., 'shape': (...)}, data.
+// little endian), the header dict, then the data.
 std::vector<PointTable> parse_npy(std::string_view bytes) {
   if (bytes.size() < 10 || bytes.substr(0, 6) != std::string_view("\x93NUMPY", 6))
     throw InputError("not a NumPy .npy file (no \\x93NUMPY magic)");
@@ -144,47 +260,43 @@ std::vector<PointTable> parse_npy(std::string_view bytes) {
   } else {
     throw InputError(fmt::format("npy: format version {} is not supported (allowed 1, 2, 3)", major));
   }
+  // header_start + header_length < 2^33: no overflow.
   if (bytes.size() < header_start + header_length) throw InputError("npy: truncated header");
-  const std::string header(bytes.substr(header_start, header_length));
-  std::smatch m;
-  if (!std::regex_search(header, m, std::regex(R"('descr'\s*:\s*'([^']*)')")))
-    throw InputError("npy: header has no 'descr'");
-  const std::string descr = m[1];
+  const NpyHeader header = NpyHeaderScanner(bytes.substr(header_start, header_length)).parse();
+  const std::string& descr = header.descr;
   const bool little = std::endian::native == std::endian::little;
   std::size_t item_size = 0;
   if ((descr == "<f8" && little) || descr == "=f8") item_size = 8;
   else if ((descr == "<f4" && little) || descr == "=f4") item_size = 4;
   else
-    throw InputError(fmt::format("npy: dtype '{}' is not supported (allowed float64 '<f8' and float32 '<f4')", descr));
-  const bool fortran = std::regex_search(header, std::regex(R"('fortran_order'\s*:\s*True)"));
-  if (!std::regex_search(header, m, std::regex(R"('shape'\s*:\s*\(([^)]*)\))")))
-    throw InputError("npy: header has no 'shape'");
-  std::vector<std::uint64_t> shape;
-  {
-    std::string dims = m[1];
-    std::replace(dims.begin(), dims.end(), ',', ' ');
-    std::istringstream in(dims);
-    std::uint64_t extent = 0;
-    while (in >> extent) shape.push_back(extent);
-  }
-  const std::string shape_text = "(" + std::string(m[1]) + ")";
-  if (shape.empty() || shape.size() > 2)
-    throw InputError(fmt::format("npy: shape {} is not (points, dimension) or (points,)", shape_text));
-  const std::uint64_t rows = shape[0];
-  const int dimension = shape.size() == 2 ? static_cast<int>(std::min<std::uint64_t>(shape[1], 1u << 20)) : 1;
-  check_dimension(dimension, "npy: shape " + shape_text);
-  if (rows == 0) throw InputError(fmt::format("npy: shape {} holds no points", shape_text));
+    throw InputError(fmt::format("npy: dtype {} is not supported (allowed float64 '<f8' and float32 '<f4')",
+                                 quote_for_message(descr)));
+  const std::string shape = shape_text(header.shape);
+  if (header.shape.empty() || header.shape.size() > 2)
+    throw InputError(fmt::format("npy: shape {} is not (points, dimension) or (points,)", shape));
+  const std::uint64_t rows = header.shape[0];
+  const int dimension =
+      header.shape.size() == 2 ? static_cast<int>(std::min<std::uint64_t>(header.shape[1], 1u << 20)) : 1;
+  check_dimension(dimension, "npy: shape " + shape);
+  if (rows == 0) throw InputError(fmt::format("npy: shape {} holds no points", shape));
   const std::size_t data_start = header_start + header_length;
-  const std::uint64_t need = rows * static_cast<std::uint64_t>(dimension) * item_size;
-  if (bytes.size() - data_start != need)
-    throw InputError(fmt::format("npy: shape {} of dtype '{}' needs {} data bytes, the file has {}", shape_text, descr,
-                                 need, bytes.size() - data_start));
+  const std::uint64_t available = bytes.size() - data_start;
+  // rows x N x item size in checked arithmetic: a header may declare (2^62, 8), whose product wraps.
+  const std::uint64_t row_bytes = static_cast<std::uint64_t>(dimension) * item_size;  // at most 64
+  if (rows > available / row_bytes || rows * row_bytes != available) {
+    std::uint64_t need = 0;
+    const std::string need_text = __builtin_mul_overflow(rows, row_bytes, &need)
+                                      ? fmt::format("{:.4g}", static_cast<double>(rows) * static_cast<double>(row_bytes))
+                                      : std::to_string(need);
+    throw InputError(fmt::format("npy: shape {} of dtype '{}' needs {} data bytes, the file has {}", shape, descr,
+                                 need_text, available));
+  }
   PointTable table{dimension, std::vector<double>(rows * static_cast<std::uint64_t>(dimension))};
   const char* data = bytes.data() + data_start;
   for (std::uint64_t i = 0; i < rows; ++i) {
     for (int k = 0; k < dimension; ++k) {
       // C order: element (i, k) at i * N + k; Fortran order: at k * rows + i.
-      const std::uint64_t element = fortran ? k * rows + i : i * dimension + k;
+      const std::uint64_t element = header.fortran_order ? k * rows + i : i * dimension + k;
       double value;
       if (item_size == 8) {
         std::memcpy(&value, data + element * 8, 8);

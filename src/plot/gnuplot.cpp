@@ -7,11 +7,14 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <memory>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -64,15 +67,33 @@ std::string find_gnuplot() {
 
 namespace {
 
-// A private directory under the system's temporary directory, removed with what is in it.
+// The folder for temporary files: $TMPDIR when set, else /tmp (as std::filesystem::temp_directory_path,
+// whose own error, "filesystem error: temp_directory_path", names no variable). Throws PlotError
+// naming TMPDIR when it is not a directory; `figure` starts the message.
+std::filesystem::path temporary_folder(const std::string& figure) {
+  const char* variable = std::getenv("TMPDIR");
+  const std::string folder = variable && *variable ? variable : "/tmp";
+  std::error_code error;
+  if (!std::filesystem::is_directory(folder, error))
+    throw PlotError(fmt::format("{}: the temporary folder {} ({}) is not a directory; set TMPDIR to a writable directory",
+                                figure, quote_for_message(folder, kMaxPathEchoChars),
+                                variable && *variable ? "TMPDIR" : "TMPDIR is unset"));
+  return folder;
+}
+
+// A private directory under the temporary folder, removed with what is in it: by the destructor on
+// every return and exception, and by the signal and exit handlers (io/atomic_file.hpp) when the
+// program is interrupted or exits from elsewhere. Files made in it are registered with file().
 class TemporaryDirectory {
  public:
-  TemporaryDirectory() {
-    std::string pattern = (std::filesystem::temp_directory_path() / "dfvn-plot-XXXXXX").string();
+  explicit TemporaryDirectory(const std::string& figure) {
+    std::string pattern = (temporary_folder(figure) / "dfvn-plot-XXXXXX").string();
     if (::mkdtemp(pattern.data()) == nullptr)
-      throw std::runtime_error(fmt::format("cannot create a temporary directory {}: {}", quote_for_message(pattern, kMaxPathEchoChars),
-                                           std::strerror(errno)));
+      throw PlotError(fmt::format("{}: cannot create a temporary directory {} (set TMPDIR to a writable directory): {}",
+                                  figure, quote_for_message(pattern, kMaxPathEchoChars), std::strerror(errno)));
     path_ = pattern;
+    registrations_.push_back(
+        std::make_unique<TemporaryRegistration>(path_.string(), TemporaryRegistration::Kind::directory));
   }
   ~TemporaryDirectory() {
     std::error_code ignored;
@@ -80,10 +101,16 @@ class TemporaryDirectory {
   }
   TemporaryDirectory(const TemporaryDirectory&) = delete;
   TemporaryDirectory& operator=(const TemporaryDirectory&) = delete;
-  const std::filesystem::path& path() const { return path_; }
+  // The path of a file `name` in the directory, registered for removal before it exists.
+  std::string file(const std::string& name) {
+    const std::string path = (path_ / name).string();
+    registrations_.push_back(std::make_unique<TemporaryRegistration>(path, TemporaryRegistration::Kind::file));
+    return path;
+  }
 
  private:
   std::filesystem::path path_;
+  std::vector<std::unique_ptr<TemporaryRegistration>> registrations_;
 };
 
 struct ProcessOutcome {
@@ -104,8 +131,23 @@ ProcessOutcome run_capturing(const std::string& executable, const std::vector<st
   std::vector<char*> argv;
   for (const std::string& a : arguments) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
+  // The interrupting signals stay blocked from the spawn until the child is registered, so that the
+  // handler knows every child it must kill; the child starts with none blocked.
+  sigset_t interrupting, previous, none;
+  sigemptyset(&interrupting);
+  sigemptyset(&none);
+  for (const int signal_number : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) sigaddset(&interrupting, signal_number);
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  posix_spawnattr_setsigmask(&attributes, &none);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK);
+  ::pthread_sigmask(SIG_BLOCK, &interrupting, &previous);
   pid_t pid = 0;
-  const int spawn_error = ::posix_spawn(&pid, executable.c_str(), &actions, nullptr, argv.data(), environ);
+  const int spawn_error = ::posix_spawn(&pid, executable.c_str(), &actions, &attributes, argv.data(), environ);
+  std::optional<ChildRegistration> child;
+  if (spawn_error == 0) child.emplace(pid);
+  ::pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+  posix_spawnattr_destroy(&attributes);
   posix_spawn_file_actions_destroy(&actions);
   ::close(pipe_fds[1]);
   if (spawn_error != 0) {
@@ -123,6 +165,12 @@ ProcessOutcome run_capturing(const std::string& executable, const std::vector<st
     }
   }
   ::close(pipe_fds[0]);
+  // Wait for the exit without reaping, so that the pid cannot be reused while the signal handler may
+  // still kill it; then unregister and reap.
+  siginfo_t exited{};
+  while (::waitid(P_PID, static_cast<id_t>(pid), &exited, WEXITED | WNOWAIT) < 0 && errno == EINTR) {
+  }
+  child.reset();
   while (::waitpid(pid, &outcome.status, 0) < 0 && errno == EINTR) {
   }
   return outcome;
@@ -138,6 +186,10 @@ std::vector<std::string> nonempty_lines(const std::string& text) {
 
 }  // namespace
 
+void check_figure_prerequisites() {
+  if (!find_gnuplot().empty()) temporary_folder("cannot draw the figures");
+}
+
 bool draw_figure(PlotProgram program, const std::string& output, const std::vector<std::string>& arguments,
                  const std::function<void(const std::string&)>& log) {
   if (arguments.size() > 8) throw std::invalid_argument("draw_figure: gnuplot 5.4 passes at most 9 arguments (ARG1..ARG9)");
@@ -149,10 +201,10 @@ bool draw_figure(PlotProgram program, const std::string& output, const std::vect
                     figure));
     return false;
   }
-  TemporaryDirectory work;
+  TemporaryDirectory work(figure + " not drawn");
   const std::string name(plot_program_name(program));
-  const std::string program_path = (work.path() / name).string();
-  const std::string png = (work.path() / "figure.png").string();
+  const std::string program_path = work.file(name);
+  const std::string png = work.file("figure.png");
   {
     std::ofstream file(program_path, std::ios::binary);
     file << plot_program_text(program);

@@ -1,7 +1,9 @@
 // Figures drawn by gnuplot. The gnuplot programs are scripts/*.gp, compiled into the library at
 // configure time, so a figure needs neither a shell nor the source tree: gnuplot is started with an
 // argument list (posix_spawn, no shell), the program reads its inputs as ARG1, ARG2, ... (paths of any
-// spelling, `it's` included), and the PNG is written whole or not at all (io/atomic_file.hpp).
+// spelling, `it's` included), and the PNG is written whole or not at all (io/atomic_file.hpp). gnuplot
+// works in a private directory under $TMPDIR that is removed on every exit path; on SIGINT, SIGTERM,
+// SIGHUP and SIGPIPE (after remove_temporaries_on_signals()) gnuplot is killed first.
 #pragma once
 
 #include <functional>
@@ -33,6 +35,10 @@ class PlotError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// Throws PlotError naming TMPDIR when gnuplot is installed but no figure could be drawn for want of
+// a temporary folder. Commands that draw figures call it before their work, not after.
+void check_figure_prerequisites();
 
 // Draws `output` (a PNG) by running `program` with ARG1 = a temporary PNG path and ARG2.. =
 // `arguments` (at most 8: gnuplot 5.4 passes ARG1..ARG9). On success the PNG replaces `output` whole,

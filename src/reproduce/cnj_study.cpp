@@ -12,8 +12,10 @@
 
 #include "core/quantile.hpp"
 #include "core/repeats.hpp"
+#include "core/seeds.hpp"
 #include "core/stopwatch.hpp"
 #include "io/atomic_file.hpp"
+#include "noise/noise_domain.hpp"
 #include "plot/gnuplot.hpp"
 #include "reproduce/reproduce.hpp"
 #include "sampling/curl_noise_jitter.hpp"
@@ -36,12 +38,27 @@ void CnjStudyConfig::validate() const {
   if (dimensions.empty()) throw std::invalid_argument("--dims must name at least one dimension");
   for (int d : dimensions) study_grid(lattice, d);
   if (seeds < 1 || seeds > 1000) throw std::invalid_argument(fmt::format("--seeds must be in 1..1000, got {}", seeds));
+  check_seed_range(seed, static_cast<std::uint64_t>(seeds), "--seed", "--seeds");
   if (bases.empty() || frequencies.empty() || step_scales.empty() || steps.empty())
     throw std::invalid_argument("the study needs at least one basis, frequency, step scale and step count");
-  for (double f : frequencies)
-    if (!std::isfinite(f) || !(f > 0.0)) throw std::invalid_argument("study frequencies must be finite and positive");
+  // Each value as CNJ would check it, but named by the option that gave it (CNJ's own message names
+  // neither the list nor the dimension).
+  for (double f : frequencies) {
+    if (!std::isfinite(f) || !(f > 0.0))
+      throw std::invalid_argument(fmt::format("--frequencies must be finite and positive, got {:g}", f));
+    for (int d : dimensions) {
+      const LatticeSpec spec{d, study_grid(lattice, d), lattice == StudyLattice::paper ? Protocol::paper : Protocol::unit};
+      const double field_frequency = f / spec.spacing();
+      if (!(field_frequency >= kMinNoiseFrequency && field_frequency <= kMaxNoiseFrequency))
+        throw std::invalid_argument(fmt::format(
+            "--frequencies {:g} cycles per lattice spacing is a field frequency of {:g} in {}D (K = {}), outside the "
+            "noise's [2^-50, 2^50]",
+            f, field_frequency, d, spec.grid));
+    }
+  }
   for (double c : step_scales)
-    if (!std::isfinite(c) || !(c > 0.0)) throw std::invalid_argument("study step scales must be finite and positive");
+    if (!std::isfinite(c) || !(c > 0.0) || c > CnjOptions::kMaxStepScale)
+      throw std::invalid_argument(fmt::format("--step-scales must be in (0, 2^20], got {:g}", c));
   for (int m : steps)
     if (m < 1 || m > CnjOptions::kMaxSteps)
       throw std::invalid_argument(fmt::format("--steps must be in 1..{}, got {}", CnjOptions::kMaxSteps, m));
@@ -508,6 +525,10 @@ std::string cnj_study_markdown(const CnjStudyResult& result) {
                       100.0 * c.unmoved, c.disorder, c.order, c.skipped, c.q01, c.min, c.q01_vs_rms, c.min_vs_rms,
                       c.q01_vs_disorder, c.q01_vs_order);
   return md;
+}
+
+std::vector<std::string> cnj_study_output_files() {
+  return {"cnj_study.csv", "cnj_study_jitter.csv", "cnj_study.md", "cnj_study.png"};
 }
 
 std::string write_cnj_study(const CnjStudyResult& result, const Log& log) {

@@ -116,6 +116,8 @@ std::optional<CnjDefaultsChoice> choose_cnj_defaults(const CnjStudyResult& resul
 // (the reading) and, with gnuplot, DIR/cnj_study.png (scripts/cnj_study.gp). Returns the Markdown;
 // throws PlotError when gnuplot fails.
 std::string write_cnj_study(const CnjStudyResult& result, const Log& log);
+// The files write_cnj_study writes into config.out_dir (cnj_study.png only with gnuplot).
+std::vector<std::string> cnj_study_output_files();
 std::string cnj_study_markdown(const CnjStudyResult& result);
 
 }  // namespace dfvn

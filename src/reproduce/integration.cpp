@@ -11,23 +11,47 @@
 
 #include <fmt/format.h>
 
+#include "core/repeats.hpp"
+#include "core/seeds.hpp"
 #include "io/atomic_file.hpp"
 #include "plot/gnuplot.hpp"
 #include "stats/realizations.hpp"
 
 namespace dfvn {
 
+namespace {
+
+// The smallest K with K^N >= 64 points: the first size of every dimension.
+int smallest_integration_grid(int dimension) {
+  int k = 2;
+  while (std::pow(static_cast<double>(k), dimension) < 64.0) ++k;
+  return k;
+}
+
+}  // namespace
+
 void IntegrationConfig::validate() const {
   if (dimensions.empty()) throw std::invalid_argument("--dims must name at least one dimension");
   if (realizations < 2) throw std::invalid_argument("--realizations must be at least 2 (16 or more for the reading)");
   if (max_points < 64) throw std::invalid_argument("--max-points must be at least 64");
   if (methods.empty()) throw std::invalid_argument("--methods must name at least one method");
+  if (const auto repeat = first_repeat(methods))
+    throw std::invalid_argument(fmt::format("--methods names '{}' twice", to_string(*repeat)));
+  if (const auto repeat = first_repeat(dimensions)) throw std::invalid_argument(fmt::format("--dims names {} twice", *repeat));
+  for (int d : dimensions) {
+    const int smallest = smallest_integration_grid(d);
+    const double points = std::pow(static_cast<double>(smallest), d);
+    if (points > static_cast<double>(max_points))
+      throw std::invalid_argument(fmt::format("--max-points {} is below the smallest lattice of {}D, {}^{} = {:.0f} points; "
+                                              "give at least {:.0f} or leave {}D out of --dims",
+                                              max_points, d, smallest, d, points, points, d));
+  }
+  check_seed_range(seed, static_cast<std::uint64_t>(realizations), "--seed", "--realizations");
 }
 
 std::vector<int> integration_grids(int dimension, std::uint64_t max_points) {
   auto count = [&](int k) { return std::pow(static_cast<double>(k), dimension); };
-  int lo = 2;
-  while (count(lo) < 64.0) ++lo;
+  const int lo = smallest_integration_grid(dimension);
   int hi = lo;
   while (count(hi + 1) <= static_cast<double>(max_points)) ++hi;
   std::vector<int> grids;
@@ -43,7 +67,11 @@ std::vector<int> integration_grids(int dimension, std::uint64_t max_points) {
 
 namespace {
 
-double fitted_slope(const std::vector<double>& x, const std::vector<double>& y) {
+// None from fewer than two distinct x (one size, or sizes of equal count) or a non-finite y (an error
+// of 0): a slope of 0.0 written there read as "no convergence".
+std::optional<double> fitted_slope(const std::vector<double>& x, const std::vector<double>& y) {
+  for (double v : y)
+    if (!std::isfinite(v)) return std::nullopt;
   const auto n = static_cast<double>(x.size());
   double mx = 0.0, my = 0.0;
   for (std::size_t i = 0; i < x.size(); ++i) {
@@ -55,7 +83,8 @@ double fitted_slope(const std::vector<double>& x, const std::vector<double>& y) 
     sxy += (x[i] - mx) * (y[i] - my);
     sxx += (x[i] - mx) * (x[i] - mx);
   }
-  return sxx > 0.0 ? sxy / sxx : 0.0;
+  if (!(sxx > 0.0)) return std::nullopt;
+  return sxy / sxx;
 }
 
 }  // namespace
@@ -140,31 +169,56 @@ const IntegrationCell* largest_cell(const IntegrationResult& r, int dimension, G
   return best;
 }
 
-double slope_of(const IntegrationResult& r, int dimension, GenzFamily family, Method method) {
+std::optional<double> slope_of(const IntegrationResult& r, int dimension, GenzFamily family, Method method) {
   for (const auto& s : r.slopes)
     if (s.dimension == dimension && s.family == family && s.method == method) return s.slope;
-  return 0.0;
+  return std::nullopt;
+}
+
+std::string slope_text(const std::optional<double>& slope) { return slope ? fmt::format("{:.2f}", *slope) : "n/a"; }
+
+bool ran(const IntegrationConfig& config, Method method) {
+  return std::find(config.methods.begin(), config.methods.end(), method) != config.methods.end();
+}
+
+// The median of the defined slopes of `method` in dimension d (over the families); none if none.
+std::optional<double> median_slope(const IntegrationResult& r, Method method, std::optional<int> dimension = {}) {
+  std::vector<double> slopes;
+  for (const auto& s : r.slopes)
+    if (s.method == method && (!dimension || s.dimension == *dimension) && s.slope) slopes.push_back(*s.slope);
+  if (slopes.empty()) return std::nullopt;
+  std::sort(slopes.begin(), slopes.end());
+  const std::size_t n = slopes.size();
+  return n % 2 ? slopes[n / 2] : 0.5 * (slopes[n / 2 - 1] + slopes[n / 2]);
 }
 
 }  // namespace
 
 std::string integration_markdown(const IntegrationResult& result) {
   const auto& config = result.config;
+  const bool has_cnj = ran(config, Method::cnj), has_jitter = ran(config, Method::jitter),
+             has_random = ran(config, Method::random);
+  // Every sentence below names only the methods, dimensions and sizes that were run.
+  std::string method_notes;
+  if (ran(config, Method::sobol)) method_notes += " Sobol at the power of two nearest K^N;";
+  if (ran(config, Method::pds))
+    method_notes += " Poisson disk (radius 1/K) runs until it is saturated, so its count follows from the radius;";
   std::string md = "# Integration error: does CNJ help to integrate functions? (Section 6.1)\n\n";
   md += fmt::format(
       "Genz's six families on [0,1]^N with random parameters per realization (difficulties b = 9.0, 7.25, 1.85, 7.03, "
       "20.4, 4.3), integrated by the plain mean over each point set. RMS relative error over R = {} realizations "
       "(seeds {}..{}; a realization draws new point sets and new integrands, the same integrands for every method), "
-      "with its standard error; every method in [0,1]^N (protocol unit) at the density of a K^N lattice; Sobol at the "
-      "power of two nearest K^N; Poisson disk (radius 1/K) runs until it is saturated, so its count follows from the radius. The slope is the least-squares slope "
-      "of log RMS error against log points (plain Monte Carlo: -0.5).\n\n",
-      config.realizations, config.seed, config.seed + config.realizations - 1);
+      "with its standard error; every method in [0,1]^N (protocol unit) at the density of a K^N lattice;{} The slope "
+      "is the least-squares slope of log RMS error against log points (plain Monte Carlo: -0.5); n/a where a "
+      "dimension has a single size.\n\n",
+      config.realizations, config.seed, config.seed + static_cast<std::uint64_t>(config.realizations - 1), method_notes);
   // Per dimension: error at the largest size, then the slope.
   std::set<int> dims(config.dimensions.begin(), config.dimensions.end());
   for (int d : dims) {
     const std::vector<int> grids = integration_grids(d, config.max_points);
-    md += fmt::format("## {}D (largest K = {}, about {} points)\n\n", d, grids.back(),
-                      static_cast<std::uint64_t>(std::pow(double(grids.back()), d)));
+    md += fmt::format("## {}D (largest K = {}, about {} points{})\n\n", d, grids.back(),
+                      static_cast<std::uint64_t>(std::pow(double(grids.back()), d)),
+                      grids.size() == 1 ? "; the only size, so no slope" : "");
     md += "| family |";
     for (Method m : config.methods) md += fmt::format(" {} |", to_string(m));
     md += "\n| --- |";
@@ -174,7 +228,8 @@ std::string integration_markdown(const IntegrationResult& result) {
       md += fmt::format("| {} |", to_string(f));
       for (Method m : config.methods) {
         const IntegrationCell* c = largest_cell(result, d, f, m);
-        md += c ? fmt::format(" {:.2e} ± {:.1e} (slope {:.2f}) |", c->rms_relative_error, c->standard_error, slope_of(result, d, f, m))
+        md += c ? fmt::format(" {:.2e} ± {:.1e} (slope {}) |", c->rms_relative_error, c->standard_error,
+                              slope_text(slope_of(result, d, f, m)))
                 : " |";
       }
       md += "\n";
@@ -183,12 +238,8 @@ std::string integration_markdown(const IntegrationResult& result) {
   }
   // The reading, computed from the numbers above.
   md += "## Reading\n\n";
-  int cells = 0, cnj_beats_jitter = 0, cnj_beats_random = 0, cnj_best = 0;
+  int cells = 0, cnj_beats_jitter = 0, jitter_beats_cnj = 0, cnj_beats_random = 0, cnj_best = 0;
   std::map<std::string, int> wins;
-  std::string cnj_vs_jitter;
-  const bool has_cnj = std::find(config.methods.begin(), config.methods.end(), Method::cnj) != config.methods.end();
-  const bool has_jitter = std::find(config.methods.begin(), config.methods.end(), Method::jitter) != config.methods.end();
-  const bool has_random = std::find(config.methods.begin(), config.methods.end(), Method::random) != config.methods.end();
   std::vector<double> ratios;
   for (int d : dims)
     for (GenzFamily f : kGenzFamilies) {
@@ -199,22 +250,21 @@ std::string integration_markdown(const IntegrationResult& result) {
         if (c && (!best || c->rms_relative_error < best->rms_relative_error)) best = c;
       }
       if (best) ++wins[std::string(to_string(best->method))];
-      if (has_cnj) {
-        const IntegrationCell* cnj = largest_cell(result, d, f, Method::cnj);
-        if (best == cnj) ++cnj_best;
-        if (has_jitter) {
-          const IntegrationCell* jitter = largest_cell(result, d, f, Method::jitter);
-          const double ratio = cnj->rms_relative_error / jitter->rms_relative_error;
-          ratios.push_back(ratio);
-          // "beats" only when the gap exceeds two standard errors of the difference
-          const double se = std::hypot(cnj->standard_error, jitter->standard_error);
-          if (jitter->rms_relative_error - cnj->rms_relative_error > 2.0 * se) ++cnj_beats_jitter;
-        }
-        if (has_random) {
-          const IntegrationCell* random = largest_cell(result, d, f, Method::random);
-          if (random->rms_relative_error - cnj->rms_relative_error > 2.0 * std::hypot(cnj->standard_error, random->standard_error))
-            ++cnj_beats_random;
-        }
+      if (!has_cnj) continue;
+      const IntegrationCell* cnj = largest_cell(result, d, f, Method::cnj);
+      if (best == cnj) ++cnj_best;
+      if (has_jitter) {
+        const IntegrationCell* jitter = largest_cell(result, d, f, Method::jitter);
+        ratios.push_back(cnj->rms_relative_error / jitter->rms_relative_error);
+        // "beats" only when the gap exceeds two standard errors of the difference
+        const double se = std::hypot(cnj->standard_error, jitter->standard_error);
+        if (jitter->rms_relative_error - cnj->rms_relative_error > 2.0 * se) ++cnj_beats_jitter;
+        if (cnj->rms_relative_error - jitter->rms_relative_error > 2.0 * se) ++jitter_beats_cnj;
+      }
+      if (has_random) {
+        const IntegrationCell* random = largest_cell(result, d, f, Method::random);
+        if (random->rms_relative_error - cnj->rms_relative_error > 2.0 * std::hypot(cnj->standard_error, random->standard_error))
+          ++cnj_beats_random;
       }
     }
   md += fmt::format("- **Who wins** (lowest RMS error at the largest size, over {} dimension x family cells): ", cells);
@@ -224,13 +274,16 @@ std::string integration_markdown(const IntegrationResult& result) {
   for (std::size_t i = 0; i < ranking.size(); ++i)
     md += fmt::format("{}{} {}", i ? ", " : "", ranking[i].second, -ranking[i].first);
   md += ".\n";
+  double median_ratio = 0.0;
   if (has_cnj && has_jitter) {
     std::sort(ratios.begin(), ratios.end());
+    median_ratio = ratios.size() % 2 ? ratios[ratios.size() / 2]
+                                     : 0.5 * (ratios[ratios.size() / 2 - 1] + ratios[ratios.size() / 2]);
     md += fmt::format(
         "- **CNJ against the jittering it starts from**: CNJ's error is lower by more than two standard errors in {} of "
-        "{} cells; the ratio CNJ / jitter error has median {:.2f} (range {:.2f}..{:.2f}). CNJ is the best method in {} "
-        "cells.\n",
-        cnj_beats_jitter, cells, ratios[ratios.size() / 2], ratios.front(), ratios.back(), cnj_best);
+        "{} cells and higher in {}; the ratio CNJ / jitter error has median {:.2f} (range {:.2f}..{:.2f}). CNJ is the "
+        "best method in {} cells.\n",
+        cnj_beats_jitter, cells, jitter_beats_cnj, median_ratio, ratios.front(), ratios.back(), cnj_best);
   }
   if (has_cnj) {
     // The share of the lattice CNJ keeps at the largest size: below 1 only if points were dropped.
@@ -242,26 +295,57 @@ std::string integration_markdown(const IntegrationResult& result) {
       least_kept = std::min(least_kept, share);
       kept += fmt::format("{}{:.1f}% in {}D", kept.empty() ? "" : ", ", 100.0 * share, d);
     }
-    if (least_kept < 0.9995)
-      md += "- **Why CNJ loses**: CNJ drops the points its trace carries out of [0,1]^N; it keeps " + kept +
-            " at the largest size. The lost points lie near the faces, so the boundary layer is under-sampled and the "
-            "plain mean is biased; the bias does not shrink like the variance, which flattens CNJ's slopes, most in "
-            "high dimensions where the faces hold more of the volume.\n";
-    else
-      md += "- **Why CNJ loses is not the boundary**: CNJ keeps every point (" + kept +
-            " at the largest size; the field is bounded by the cube, Eq. 13), and still its error is above jitter's and "
-            "its slopes flatten as the dimension grows. This study does not establish the cause. One candidate, "
-            "untested: the field's wavelength is tied to the lattice (5 spacings at the default frequency), so as the "
-            "set grows the displaced integrand f(x + u(x)) gains detail as fast as the lattice refines, and the "
-            "lattice's accuracy on smooth integrands does not carry over.\n";
+    // CNJ's median slope per dimension, lowest and highest dimension with one.
+    std::string slopes;
+    std::optional<std::pair<int, double>> first_slope, last_slope;
+    for (int d : dims)
+      if (const auto m = median_slope(result, Method::cnj, d)) {
+        if (!first_slope) first_slope = {d, *m};
+        last_slope = {d, *m};
+      }
+    if (first_slope && last_slope && first_slope->first != last_slope->first)
+      slopes = fmt::format("; its median slope is {:.2f} in {}D and {:.2f} in {}D", first_slope->second, first_slope->first,
+                           last_slope->second, last_slope->first);
+    if (has_jitter && median_ratio > 1.0) {
+      if (least_kept < 0.9995)
+        md += "- **Why CNJ loses to jitter**: CNJ drops the points its trace carries out of [0,1]^N; it keeps " + kept +
+              " at the largest size" + slopes +
+              ". The lost points lie near the faces, so the boundary layer is under-sampled and the plain mean is "
+              "biased; the bias does not shrink like the variance, which flattens CNJ's slopes.\n";
+      else
+        md += "- **Why CNJ loses to jitter is not the boundary**: CNJ keeps every point (" + kept +
+              " at the largest size; the field is bounded by the cube, Eq. 13), and still its median error is above "
+              "jitter's" + slopes +
+              ". This study does not establish the cause. One candidate, untested: the field's wavelength is tied to "
+              "the lattice (5 spacings at the default frequency), so as the set grows the displaced integrand "
+              "f(x + u(x)) gains detail as fast as the lattice refines, and the lattice's accuracy on smooth "
+              "integrands does not carry over.\n";
+    } else {
+      md += "- **Points CNJ keeps**: " + kept + " at the largest size" + slopes + "." +
+            (has_jitter ? std::string() : " Jitter was not run, so CNJ is not compared with the jittering it starts from.") +
+            "\n";
+    }
   }
   if (has_cnj && has_random)
     md += fmt::format("- **CNJ against uniform random points**: lower error (by more than two standard errors) in {} of {} cells.\n",
                       cnj_beats_random, cells);
-  md += "- Slopes near -0.5 mean Monte Carlo convergence; steeper slopes (Sobol, Halton, jittered lattices on smooth "
-        "integrands in low dimensions) mean the set's structure pays off. Oscillatory errors are relative to an integral "
-        "that a random phase can bring near 0, which inflates them for every method alike (the integrands are shared).\n";
+  // Which methods converged faster than Monte Carlo here: median slope over every cell below -0.6.
+  std::string steeper;
+  for (Method m : config.methods)
+    if (const auto slope = median_slope(result, m); slope && *slope < -0.6)
+      steeper += fmt::format("{}{} {:.2f}", steeper.empty() ? "" : ", ", to_string(m), *slope);
+  md += "- Slopes near -0.5 mean Monte Carlo convergence; steeper slopes mean the set's structure pays off" +
+        (steeper.empty() ? std::string(" (no method's median slope is below -0.6 here)")
+                         : " (median slope below -0.6 here: " + steeper + ")") +
+        ". Oscillatory errors are relative to an integral that a random phase can bring near 0, which inflates them "
+        "for every method alike (the integrands are shared).\n";
   return md;
+}
+
+std::vector<std::string> integration_output_files(const IntegrationConfig& config) {
+  std::vector<std::string> files = {"integration.csv", "integration_slopes.csv", "integration.md"};
+  for (int d : config.dimensions) files.push_back(fmt::format("integration_{}d.png", d));
+  return files;
 }
 
 std::string write_integration(const IntegrationResult& result, const Log& log) {
@@ -272,7 +356,8 @@ std::string write_integration(const IntegrationResult& result, const Log& log) {
                          c.points, c.rms_relative_error, c.standard_error, result.config.realizations);
   std::string slopes = "dim,family,method,slope\n";
   for (const auto& s : result.slopes)
-    slopes += fmt::format("{},{},{},{:.4f}\n", s.dimension, to_string(s.family), to_string(s.method), s.slope);
+    slopes += fmt::format("{},{},{},{}\n", s.dimension, to_string(s.family), to_string(s.method),
+                          s.slope ? fmt::format("{:.4f}", *s.slope) : std::string());  // empty: no slope
   const std::string md = integration_markdown(result);
   for (const auto& [name, text] :
        {std::pair{"integration.csv", cells}, {"integration_slopes.csv", slopes}, {"integration.md", md}})

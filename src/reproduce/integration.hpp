@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,11 +22,14 @@ struct IntegrationConfig {
   std::vector<Method> methods = {Method::cnj,    Method::jitter, Method::pds, Method::sobol,
                                  Method::random, Method::halton, Method::lhs};
   std::string out_dir = "out/integration";
-  void validate() const;  // throws std::invalid_argument naming the option
+  // Throws std::invalid_argument naming the option: among others, a method named twice and a
+  // --max-points below a dimension's smallest lattice (2^7 = 128 points in 7D).
+  void validate() const;
 };
 
 // The lattice sizes K of one dimension: up to 5 values, roughly evenly spaced in log K^N, from the
-// smallest K with K^N >= 64 to the largest with K^N <= max_points.
+// smallest K with K^N >= 64 to the largest with K^N <= max_points (validate() refuses a max_points
+// below the smallest).
 std::vector<int> integration_grids(int dimension, std::uint64_t max_points);
 
 struct IntegrationCell {
@@ -42,7 +46,9 @@ struct IntegrationSlope {
   int dimension = 0;
   GenzFamily family = GenzFamily::oscillatory;
   Method method = Method::cnj;
-  double slope = 0.0;  // least-squares slope of log RMS error against log points (random: -1/2)
+  // Least-squares slope of log RMS error against log points (random: -1/2); none from fewer than two
+  // sizes with different point counts, or when an error is 0.
+  std::optional<double> slope;
 };
 
 struct IntegrationResult {
@@ -57,6 +63,8 @@ IntegrationResult run_integration(const IntegrationConfig& config, const StagePr
 // reading) and, with gnuplot, DIR/integration_<N>d.png (scripts/integration.gp). Returns the
 // Markdown; throws PlotError when gnuplot fails.
 std::string write_integration(const IntegrationResult& result, const Log& log);
+// The files write_integration writes into config.out_dir (the figures only with gnuplot).
+std::vector<std::string> integration_output_files(const IntegrationConfig& config);
 std::string integration_markdown(const IntegrationResult& result);
 
 }  // namespace dfvn

@@ -69,6 +69,9 @@ Table1Result run_table1(const Table1Config& config, const StageProgress& progres
 // installed (otherwise `log` says how to get it). Returns the Markdown; throws PlotError when gnuplot
 // fails.
 std::string write_table1(const Table1Config& config, const Table1Result& result, const Log& log);
+// The files write_table1 writes into config.out_dir (figure4.png only with gnuplot), for the check of
+// a run's outputs before it starts (io/atomic_file.hpp, check_outputs).
+std::vector<std::string> table1_output_files();
 std::string table1_markdown(const Table1Result& result);
 
 // ---- Table 2: image warping (Section 5.2) ----
@@ -98,7 +101,7 @@ struct Table2Row {
 
 struct Table2Result {
   Table2Config config;
-  WarpConfig second;  // the second resolution's configuration (width 0 if none)
+  WarpConfig second{.width = 0, .height = 0};  // the second resolution's configuration (width 0 if none)
   double reference_seconds = 0.0;
   int threads = 1;
   std::string machine;  // where the times were measured (core/machine.hpp)
@@ -117,6 +120,8 @@ Table2Result run_table2(const Table2Config& config, const StageProgress& progres
 // DIR/timeline.csv with DIR/time-<t>.png, and, with gnuplot, DIR/figure5.png
 // (scripts/figure5.gp). Returns the Markdown; throws PlotError when gnuplot fails.
 std::string write_table2(const std::string& out_dir, const Table2Result& result, const Log& log);
+// The files write_table2 writes into its directory for this configuration (figure5.png only with gnuplot).
+std::vector<std::string> table2_output_files(const Table2Config& config);
 std::string table2_markdown(const Table2Result& result);
 
 // The paper's qualitative claims about Table 2, each a strict inequality on our float RMSE.

@@ -11,6 +11,7 @@
 #include "core/machine.hpp"
 #include "core/message_text.hpp"
 #include "core/repeats.hpp"
+#include "core/seeds.hpp"
 #include "core/stopwatch.hpp"
 #include "io/atomic_file.hpp"
 #include "plot/gnuplot.hpp"
@@ -67,6 +68,7 @@ void Table1Config::validate() const {
   for (int d : dimensions) table1_grid(d);
   if (realizations < 1 || realizations > 1000)
     throw std::invalid_argument(fmt::format("--realizations must be in 1..1000, got {}", realizations));
+  check_seed_range(seed, static_cast<std::uint64_t>(realizations), "--seed", "--realizations");
 }
 
 Table1Result run_table1(const Table1Config& config, const StageProgress& progress) {
@@ -170,6 +172,8 @@ void draw_figure4(const Table1Result& result, const std::string& dir, const Log&
 }
 
 }  // namespace
+
+std::vector<std::string> table1_output_files() { return {"table1.csv", "rdf.csv", "table1.md", "figure4.png"}; }
 
 std::string write_table1(const Table1Config& config, const Table1Result& result, const Log& log) {
   const std::string dir = config.out_dir;

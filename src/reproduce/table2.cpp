@@ -305,17 +305,28 @@ std::string table2_markdown(const Table2Result& r) {
   return md;
 }
 
+std::vector<std::string> table2_output_files(const Table2Config& config) {
+  std::vector<std::string> files = {"table2.csv", "table2.md", "timeline.csv"};
+  for (const WarpVariant& variant : table2_variants()) files.push_back(variant.label() + ".png");
+  for (double t : config.figure_times) files.push_back(fmt::format("time-{:g}.png", t));
+  for (const char* name : {"source.png", "reference.png", "figure5.png"}) files.emplace_back(name);
+  return files;
+}
+
 std::string write_table2(const std::string& out_dir, const Table2Result& r, const Log& log) {
   const auto path = [&](const std::string& name) { return (std::filesystem::path(out_dir) / name).string(); };
   std::string csv =
       "integrator,steps,reprojection_steps,rmse,seconds,megapixels_per_second,width,height,threads,field_evaluations,"
       "rmse_second,second_width,second_height,samples,setting,rmse_8bit_wraparound\n";
   for (const auto& row : r.rows)
-    csv += fmt::format("{},{},{},{:.9g},{:.6f},{:.6g},{},{},{},{},{:.9g},{},{},{},{},{:.9g}\n", to_string(row.variant.integrator),
+    csv += fmt::format("{},{},{},{:.9g},{:.6f},{:.6g},{},{},{},{},{},{},{},{},{},{:.9g}\n", to_string(row.variant.integrator),
                        row.variant.steps, row.variant.newton_steps, row.rmse, row.seconds, row.megapixels_per_second,
-                       r.config.warp.width, r.config.warp.height, r.threads, row.field_evaluations, row.rmse_second,
-                       r.second.width, r.second.height, r.config.warp.samples, to_string(r.config.setting),
-                       row.rmse_wraparound);
+                       r.config.warp.width, r.config.warp.height, r.threads, row.field_evaluations,
+                       // Without a second resolution its columns are empty: nothing was measured there.
+                       r.second.width != 0 ? fmt::format("{:.9g}", row.rmse_second) : std::string(),
+                       r.second.width != 0 ? std::to_string(r.second.width) : std::string(),
+                       r.second.width != 0 ? std::to_string(r.second.height) : std::string(), r.config.warp.samples,
+                       to_string(r.config.setting), row.rmse_wraparound);
   std::string timeline = "time,steps,file\n";
   for (std::size_t i = 0; i < r.timeline.size(); ++i)
     timeline += fmt::format("{:g},{},time-{:g}.png\n", r.config.figure_times[i], Table2Config::kFigureSteps,

@@ -205,11 +205,17 @@ void SampleConfig::validate() const {
   // fails is reported by run_sampling.
   const double limit = max_memory_gib > 0.0 ? max_memory_gib * double(1ULL << 30) : 0.8 * physical_memory_bytes();
   const double need = estimated_peak_bytes(*this);
-  if (need > limit)
+  if (need > limit) {
+    // Name the option the user gave: with -n the lattice's K was derived from the count.
+    std::uint64_t largest = 0;
+    for (Method m : methods) largest = std::max(largest, plan_method(*this, m).requested);
+    const std::string size_option = count > 0 ? "-n" : "--grid";
     throw std::invalid_argument(fmt::format(
-        "--grid {} in {}D gives {} points, which need about {} of memory (limit {}); "
-        "lower --grid or raise the limit with --max-memory GIB",
-        grid, dimension, lattice_points, byte_size(need), byte_size(limit)));
+        "{} {} in {}D gives {} points, which need about {} of memory (limit {}); lower {} or raise the limit with "
+        "--max-memory GIB",
+        size_option, count > 0 ? count : static_cast<std::uint64_t>(grid), dimension, count > 0 ? largest : lattice_points,
+        byte_size(need), byte_size(limit), size_option));
+  }
 }
 
 namespace {
@@ -322,9 +328,9 @@ void generate_points(const SampleConfig& config, MethodResult& result, const Sta
 namespace {
 
 std::string out_of_memory_message(const SampleConfig& config, const MethodPlan& plan) {
-  return fmt::format("out of memory for the {} point set: {} points in {}D need about {}; lower --grid{}",
+  return fmt::format("out of memory for the {} point set: {} points in {}D need about {}; lower {}{}",
                      to_string(plan.method), plan.requested, config.dimension,
-                     byte_size(estimated_bytes(plan, config.dimension)),
+                     byte_size(estimated_bytes(plan, config.dimension)), config.count > 0 ? "-n" : "--grid",
                      config.max_memory_gib > 0.0 ? " or --max-memory" : "");
 }
 

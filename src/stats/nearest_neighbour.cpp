@@ -13,6 +13,7 @@
 #include "core/dimension.hpp"
 #include "core/parallel.hpp"
 #include "core/quantile.hpp"
+#include "stats/distance_scale.hpp"
 #include "stats/kd_tree.hpp"
 
 namespace dfvn {
@@ -64,6 +65,13 @@ std::vector<double> nearest_neighbour_distances_nanoflann(const PointSet& points
 std::vector<double> nearest_neighbour_distances(const PointSet& points, KnnBackend backend, int threads,
                                                 const FractionProgress& progress) {
   if (points.size() < 2) throw std::invalid_argument("nearest-neighbour statistics need at least 2 points");
+  // Squared differences of huge or tiny coordinates overflow or underflow: compute at unit scale
+  // (stats/distance_scale.hpp; exact, and no copy for ordinary sets).
+  if (const double scale = coordinate_scale(points); scale != 1.0) {
+    std::vector<double> distances = nearest_neighbour_distances(scaled_point_set(points, scale), backend, threads, progress);
+    for (double& d : distances) d *= scale;
+    return distances;
+  }
   std::vector<double> distances =
       backend == KnnBackend::flann
           ? nearest_neighbour_distances_flann(points, threads, progress)
@@ -94,6 +102,13 @@ std::vector<double> nearest_neighbour_distances_brute_force(const PointSet& poin
 }
 
 NearestNeighbourSummary summarize_nearest_neighbours(std::vector<double> distances, const PointSet& points) {
+  // side^N overflows or underflows for extreme sides: summarise at unit scale (stats/distance_scale.hpp).
+  if (const double scale = domain_scale(points.domain.side); scale != 1.0) {
+    for (double& d : distances) d /= scale;
+    NearestNeighbourSummary s = summarize_nearest_neighbours(std::move(distances), scaled_point_set(PointSet{points.dimension, {}, points.domain}, scale));
+    for (double* value : {&s.min, &s.median, &s.q01, &s.mean}) *value *= scale;
+    return s;
+  }
   return summarize_nearest_neighbours(std::move(distances), points.domain.volume(points.dimension), points.dimension);
 }
 

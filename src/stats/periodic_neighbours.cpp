@@ -11,6 +11,7 @@
 
 #include "core/dimension.hpp"
 #include "core/parallel.hpp"
+#include "stats/distance_scale.hpp"
 #include "stats/kd_tree.hpp"
 #include "stats/periodic_images.hpp"
 
@@ -102,6 +103,15 @@ std::vector<double> periodic_nearest_neighbour_distances(const PointSet& points,
                                                          const FractionProgress& progress) {
   if (points.size() < 2) throw std::invalid_argument("nearest-neighbour statistics need at least 2 points");
   check_in_periodic_box(points);
+  // Squared differences of huge or tiny coordinates overflow or underflow: compute at unit scale, exactly
+  // (stats/distance_scale.hpp), box and all.
+  double scale = domain_scale(points.domain.side);
+  if (scale == 1.0) scale = coordinate_scale(points);
+  if (scale != 1.0) {
+    std::vector<double> distances = periodic_nearest_neighbour_distances(scaled_point_set(points, scale), threads, progress);
+    for (double& d : distances) d *= scale;
+    return distances;
+  }
   std::vector<double> distances =
       points.dimension == 1
           ? periodic_distances_1d(points)

@@ -9,6 +9,7 @@
 
 #include "core/stopwatch.hpp"
 #include "io/csv.hpp"
+#include "stats/distance_scale.hpp"
 #include "stats/periodic_neighbours.hpp"
 
 namespace dfvn {
@@ -35,6 +36,7 @@ std::vector<double> nearest_neighbour_distances_any_dimension(const PointSet& po
 
 void check_point_set(const PointSet& points) {
   if (points.size() < 2) throw std::invalid_argument(fmt::format("the set has {} point(s); at least 2 are needed", points.size()));
+  check_domain_side(points.domain.side);
   for (std::size_t i = 0; i < points.size(); ++i)
     for (int k = 0; k < points.dimension; ++k)
       if (!points.domain.contains(points.point(i) + k, 1))
@@ -52,10 +54,11 @@ PointSetStatistics measure_point_set(const PointSet& points, const PointSetStati
     if (progress) progress("statistics", f);
   };
   report(0.0);
-  out.nearest = summarize_nearest_neighbours(
+  std::vector<double> distances =
       options.periodic ? periodic_nearest_neighbour_distances(points, options.threads, report)
-                       : nearest_neighbour_distances_any_dimension(points, options.knn, options.threads, report),
-      points);
+                       : nearest_neighbour_distances_any_dimension(points, options.knn, options.threads, report);
+  if (points.dimension > 1) check_nearest_neighbours_resolved(points, distances);  // 1D needs no squares
+  out.nearest = summarize_nearest_neighbours(std::move(distances), points);
   if (options.discrepancy) {
     for (std::size_t d = 0; d < std::size(kAllDiscrepancies); ++d) {
       const DiscrepancyKind kind = kAllDiscrepancies[d];
@@ -84,7 +87,7 @@ std::string point_statistics_csv_header() {
 std::string point_statistics_csv_row(std::string_view input, std::string_view set, const PointSet& points,
                                      const PointSetStatistics& s, bool timing) {
   // The five displacement columns stay empty: there are no lattice sites.
-  std::string row = fmt::format("\"{}\",{},{},{},{},{},{},{},{},,,,,,{},{}", input, set, points.dimension, s.nearest.points,
+  std::string row = fmt::format("{},{},{},{},{},{},{},{},{},,,,,,{},{}", csv_quoted(input), set, points.dimension, s.nearest.points,
                                 format_real(s.nearest.min), format_real(s.nearest.q01), format_real(s.nearest.median),
                                 format_real(s.nearest.mean), format_real(s.nearest.median_scaled),
                                 timing ? fmt::format("{:.6f}", s.seconds) : std::string(), format_real(points.domain.side));

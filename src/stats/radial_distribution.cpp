@@ -11,6 +11,7 @@
 #include "core/dimension.hpp"
 #include "core/hash.hpp"
 #include "core/parallel.hpp"
+#include "stats/distance_scale.hpp"
 #include "stats/kd_tree.hpp"
 #include "stats/periodic_images.hpp"
 #include "stats/periodic_neighbours.hpp"
@@ -140,6 +141,18 @@ RdfCurve radial_distribution_impl(const PointSet& points, const RdfOptions& opti
 RdfCurve radial_distribution(const PointSet& points, const RdfOptions& options, std::uint64_t seed, int threads,
                              const FractionProgress& progress) {
   options.validate();
+  // Volumes and squared distances of extreme domains overflow: compute at unit scale, where g is the
+  // same (it has no unit), and scale r back (stats/distance_scale.hpp).
+  double scale = domain_scale(points.domain.side);
+  if (scale == 1.0) scale = coordinate_scale(points);
+  if (scale != 1.0) {
+    RdfOptions scaled = options;
+    scaled.r_max /= scale;
+    RdfCurve curve = radial_distribution(scaled_point_set(points, scale), scaled, seed, threads, progress);
+    for (double& r : curve.r) r *= scale;
+    curve.r_max *= scale;
+    return curve;
+  }
   RdfCurve curve = dispatch_dimension(
       points.dimension, [&]<int N>() { return radial_distribution_impl<N>(points, options, seed, threads, progress); });
   if (progress) progress(1.0);

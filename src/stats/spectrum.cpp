@@ -68,11 +68,13 @@ PowerSpectrum power_spectrum(const std::vector<PointSet>& sets, int max_frequenc
     }
   }
 
-  // Radial shells and their anisotropy.
-  out.radial_mean.assign(static_cast<std::size_t>(max_frequency) + 1, 0.0);
-  out.anisotropy_db.assign(static_cast<std::size_t>(max_frequency) + 1, 0.0);
-  out.shell_counts.assign(static_cast<std::size_t>(max_frequency) + 1, 0);
-  std::vector<double> squares(static_cast<std::size_t>(max_frequency) + 1, 0.0);
+  // Radial shells and their anisotropy: the shell of each frequency, then the means, then the variances
+  // about them (two passes: the one-pass E[P^2] - E[P]^2 cancels to rounding noise for flat shells).
+  const std::size_t shells = static_cast<std::size_t>(max_frequency) + 1;
+  out.radial_mean.assign(shells, 0.0);
+  out.anisotropy_db.assign(shells, std::nullopt);
+  out.shell_counts.assign(shells, 0);
+  std::vector<std::size_t> shell_of(total);
   for (std::size_t index = 0; index < total; ++index) {
     std::size_t rest = index;
     double radius2 = 0.0;
@@ -81,20 +83,28 @@ PowerSpectrum power_spectrum(const std::vector<PointSet>& sets, int max_frequenc
       rest /= static_cast<std::size_t>(side);
       radius2 += double(k) * k;
     }
-    const auto shell = static_cast<std::size_t>(std::lround(std::sqrt(radius2)));
-    if (shell > static_cast<std::size_t>(max_frequency)) continue;  // corners of the cube: incomplete shells
-    out.radial_mean[shell] += out.power[index];
-    squares[shell] += out.power[index] * out.power[index];
-    ++out.shell_counts[shell];
+    shell_of[index] = static_cast<std::size_t>(std::lround(std::sqrt(radius2)));
+    if (shell_of[index] >= shells) continue;  // corners of the cube: incomplete shells
+    out.radial_mean[shell_of[index]] += out.power[index];
+    ++out.shell_counts[shell_of[index]];
   }
-  for (std::size_t r = 0; r < out.radial_mean.size(); ++r) {
+  for (std::size_t r = 0; r < shells; ++r) out.radial_mean[r] /= out.shell_counts[r];
+  std::vector<double> squares(shells, 0.0);
+  for (std::size_t index = 0; index < total; ++index)
+    if (shell_of[index] < shells) {
+      const double deviation = out.power[index] - out.radial_mean[shell_of[index]];
+      squares[shell_of[index]] += deviation * deviation;
+    }
+  for (std::size_t r = 0; r < shells; ++r) {
     const double count = out.shell_counts[r];
-    out.radial_mean[r] /= count;
-    const double variance = count > 1 ? (squares[r] / count - out.radial_mean[r] * out.radial_mean[r]) * count / (count - 1) : 0.0;
-    out.anisotropy_db[r] = variance > 0.0 ? 10.0 * std::log10(variance / (out.radial_mean[r] * out.radial_mean[r])) : -INFINITY;
+    const double mean2 = out.radial_mean[r] * out.radial_mean[r];
+    const double variance = count > 1 ? squares[r] / (count - 1) : 0.0;
+    if (mean2 > 0.0 && variance > kMinRelativeVariance * mean2) out.anisotropy_db[r] = 10.0 * std::log10(variance / mean2);
   }
   return out;
 }
+
+std::vector<std::string> spectrum_file_suffixes() { return {".csv", "_radial.csv", ".png"}; }
 
 void write_spectrum_files(const std::string& prefix, const PowerSpectrum& spectrum,
                           const std::function<void(const std::string&)>& log) {
@@ -110,7 +120,8 @@ void write_spectrum_files(const std::string& prefix, const PowerSpectrum& spectr
   }
   std::string radial = "frequency,power,anisotropy_db,frequencies\n";
   for (std::size_t r = 1; r < spectrum.radial_mean.size(); ++r)
-    fmt::format_to(std::back_inserter(radial), "{},{:.9g},{:.6g},{}\n", r, spectrum.radial_mean[r], spectrum.anisotropy_db[r],
+    fmt::format_to(std::back_inserter(radial), "{},{:.9g},{},{}\n", r, spectrum.radial_mean[r],
+                   spectrum.anisotropy_db[r] ? fmt::format("{:.6g}", *spectrum.anisotropy_db[r]) : std::string(),
                    spectrum.shell_counts[r]);
   write_file_atomically(prefix + ".csv", grid);
   write_file_atomically(prefix + "_radial.csv", radial);

@@ -4,12 +4,18 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "sampling/point_set.hpp"
 
 namespace dfvn {
+
+// The periodogram sums n terms, each rounded to about 1e-16 relative: over a shell its relative
+// variance from rounding alone is below (n 1e-16)^2, 1e-20 for n up to 1e6. Below this bound
+// (-200 dB) a shell's power is constant, and its anisotropy (-Inf dB) is not written.
+inline constexpr double kMinRelativeVariance = 1e-20;
 
 struct PowerSpectrum {
   int dimension = 2;
@@ -22,8 +28,10 @@ struct PowerSpectrum {
   // Radial average over shells |k| in [r - 1/2, r + 1/2), r = 1..K (the shell 0 is the DC term).
   std::vector<double> radial_mean;
   // Anisotropy per shell: 10 log10(var / mean^2) of P over the shell (Lagae and Dutre 2008), in dB;
-  // for a periodogram of random points about 0 dB (an exponential variable has var = mean^2).
-  std::vector<double> anisotropy_db;
+  // for a periodogram of random points about 0 dB (an exponential variable has var = mean^2). Empty
+  // where it is -Inf: the shell's power is 0 or constant to rounding (var / mean^2 below
+  // kMinRelativeVariance), as for a set of identical points.
+  std::vector<std::optional<double>> anisotropy_db;
   std::vector<int> shell_counts;
 };
 
@@ -33,9 +41,11 @@ struct PowerSpectrum {
 PowerSpectrum power_spectrum(const std::vector<PointSet>& sets, int max_frequency, int threads);
 
 // PREFIX.csv: k0,..,k{N-1},power for every frequency; PREFIX_radial.csv: frequency,power,anisotropy_db,
-// frequencies (the shell's count). Then PREFIX.png (scripts/spectrum.gp, src/plot/gnuplot.hpp) when gnuplot is
+// frequencies (the shell's count), anisotropy_db empty where it is not defined. Then PREFIX.png (scripts/spectrum.gp, src/plot/gnuplot.hpp) when gnuplot is
 // installed (otherwise `log` says how to get it). Throws PlotError if gnuplot fails.
 void write_spectrum_files(const std::string& prefix, const PowerSpectrum& spectrum,
                           const std::function<void(const std::string&)>& log);
+// What write_spectrum_files appends to the prefix: ".csv", "_radial.csv", ".png".
+std::vector<std::string> spectrum_file_suffixes();
 
 }  // namespace dfvn

@@ -112,5 +112,36 @@ TEST_F(AtomicFileTest, TwoOutputsOnOneFileAreRefused) {
   }
 }
 
+// Issue 23: one check of a run's outputs for every subcommand (stats --spectrum P -o P.csv wrote the
+// statistics over the spectrum): standard output once, no file twice, each writable, and the run's
+// folders made only after the outputs are known not to clash.
+TEST_F(AtomicFileTest, OneCheckOfARunsOutputs) {
+  const auto error_of = [](const std::vector<std::pair<std::string, std::string>>& outputs,
+                           const std::vector<std::string>& directories = {}) -> std::string {
+    try {
+      check_outputs(outputs, directories);
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(error_of({{"--output", "-"}, {"--json", path("a.json")}, {"--spectrum (P.csv)", path("P.csv")}}), "");
+  EXPECT_EQ(error_of({{"--stats", "-"}, {"--rdf", "-"}}), "--stats - and --rdf - would both write to standard output; send one to a file");
+  EXPECT_EQ(error_of({{"the statistics (default --output -)", "-"}, {"--json", "-"}}),
+            "the statistics (default --output -) and --json - would both write to standard output; send one to a file");
+  const std::string clash = error_of({{"--output", path("P.csv")}, {"--spectrum (P.csv)", (dir_ / "." / "P.csv").string()}});
+  EXPECT_NE(clash.find("--output and --spectrum (P.csv) would write the same file"), std::string::npos) << clash;
+  // A clash inside a folder the run would create: refused before the folder exists.
+  const std::string folder = path("new-folder");
+  EXPECT_NE(error_of({{"--stats", path("new-folder/x.csv")}, {"--points (x.csv)", path("new-folder/x.csv")}}, {folder}), "");
+  EXPECT_FALSE(fs::exists(folder));
+  EXPECT_EQ(error_of({{"--stats", path("new-folder/x.csv")}, {"--points (y.csv)", path("new-folder/y.csv")}}, {folder}), "");
+  EXPECT_TRUE(fs::is_directory(folder));
+  // Unwritable: a directory in place of a file.
+  fs::create_directory(path("taken"));
+  EXPECT_NE(error_of({{"--out (table1.csv)", path("taken")}}).find("it is a directory"), std::string::npos);
+  EXPECT_FALSE(has_temporaries());
+}
+
 }  // namespace
 }  // namespace dfvn

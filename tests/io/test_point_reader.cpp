@@ -6,6 +6,7 @@
 #include <sstream>
 #include <string>
 
+#include "io/csv.hpp"
 #include "io/point_file.hpp"
 
 namespace dfvn {
@@ -101,7 +102,71 @@ TEST(PointReader, DatSetsSeparatedByHashLines) {
   EXPECT_EQ(error_of("0.1 0.2\n#\n0.1 0.2 0.3\n", InputFormat::dat),
             "line 3: expected 2 whitespace-separated numbers (as in the first point), found 3");
   EXPECT_EQ(error_of("0.1 x\n", InputFormat::dat), "line 1, column 2: 'x' is not a number");
-  EXPECT_EQ(error_of("0.1 nan\n", InputFormat::dat), "line 1, column 2: 'nan' is not a finite number");
+  EXPECT_EQ(error_of("0.1 nan\n", InputFormat::dat),
+            "line 1, column 2: 'nan' is not a finite number (NaN and Inf are not allowed)");
+}
+
+// Issue 23: the dat reader took "+-0" and "++0.5", which the CSV reader refuses. Every text reader now
+// reads numbers with parse_coordinate (io/csv.hpp): each field is accepted or refused alike by all three.
+TEST(PointReader, EveryTextReaderReadsNumbersAlike) {
+  for (const std::string field : {"+-0", "++0.5", "--1", "-+1", "+", "-", "0x10", "1e", ".", "0.5x", "+.5", "-0",
+                                  "+0.5", "5e-324", "1e-400", "1e400", "inf", "-nan", "1_0", "1e+5"}) {
+    const std::string csv = "0.25," + field + "\n0.5,0.5\n";  // field in line 1, column 2
+    const std::string whitespace = "0.25 " + field + "\n0.5 0.5\n";
+    const std::string csv_error = error_of(csv, InputFormat::csv);
+    EXPECT_EQ(error_of(whitespace, InputFormat::dat), csv_error) << field;
+    std::istringstream text(whitespace);
+    std::string text_error = "no error";
+    try {
+      read_points_text(text, 2);
+    } catch (const InputError& e) {
+      text_error = e.what();
+    }
+    EXPECT_EQ(text_error, csv_error) << field;
+    double value = 0.0;
+    EXPECT_EQ(csv_error == "no error", parse_coordinate(field, value) == NumberText::ok) << field;
+  }
+  EXPECT_EQ(error_of("0.1 +-0\n", InputFormat::dat), "line 1, column 2: '+-0' is not a number");
+  EXPECT_EQ(error_of("++0.5 0.1\n", InputFormat::dat), "line 1, column 1: '++0.5' is not a number");
+}
+
+// Issue 23: a header declaring shape (2^62, 8) of '<f8' with no data: rows x N x 8 wrapped past 2^64
+// to 0 and passed the size check, then the reader wrote past its buffer.
+TEST(PointReader, NpyShapeWhoseByteCountWrapsIsRefused) {
+  EXPECT_EQ(error_of(npy_bytes("<f8", "(4611686018427387904, 8)", nullptr, 0), InputFormat::npy),
+            "npy: shape (4611686018427387904, 8) of dtype '<f8' needs 2.951e+20 data bytes, the file has 0");
+  EXPECT_EQ(error_of(npy_bytes("<f4", "(18446744073709551615, 1)", nullptr, 0), InputFormat::npy),
+            "npy: shape (18446744073709551615, 1) of dtype '<f4' needs 7.379e+19 data bytes, the file has 0");
+  const double values[2] = {0.5, 0.5};
+  EXPECT_EQ(error_of(npy_bytes("<f8", "(2305843009213693953, 8)", values, sizeof values), InputFormat::npy),
+            "npy: shape (2305843009213693953, 8) of dtype '<f8' needs 1.476e+20 data bytes, the file has 16");
+}
+
+TEST(PointReader, NpyHeaderIsReadStrictly) {
+  const double values[4] = {0.1, 0.2, 0.3, 0.4};
+  for (const std::string shape : {"(-1, 2)", "(2.0, 2)", "(18446744073709551616, 2)", "(2 2)", "(2, 2", "2, 2", "(0x2, 2)"})
+    EXPECT_NE(error_of(npy_bytes("<f8", shape, values, sizeof values), InputFormat::npy), "no error") << shape;
+  EXPECT_EQ(error_of(npy_bytes("<f8", "(18446744073709551616, 2)", values, sizeof values), InputFormat::npy),
+            "npy: shape extent '18446744073709551616' is above 2^64 - 1");
+  EXPECT_EQ(error_of(npy_bytes("<f8", "()", values, sizeof values), InputFormat::npy),
+            "npy: shape () is not (points, dimension) or (points,)");
+  EXPECT_EQ(parse_point_sets(npy_bytes("<f8", "( 2 , 2 , )", values, sizeof values), InputFormat::npy)[0].rows(), 2u);
+  // Keys: the three numpy writes, no other, none missing.
+  std::string no_shape("\x93NUMPY\x01\x00", 8);
+  const std::string header = "{'descr': '<f8', 'fortran_order': False}\n";
+  no_shape += static_cast<char>(header.size());
+  no_shape += '\0';
+  no_shape += header;
+  EXPECT_EQ(error_of(no_shape, InputFormat::npy), "npy: header has no 'shape'");
+  // A long header: the regular expressions that read it recursed once per byte and overflowed the stack.
+  std::string long_string(60000, 'x');
+  std::string huge("\x93NUMPY\x02\x00", 8);
+  const std::string dict = "{'descr': '" + long_string + "', 'fortran_order': False, 'shape': (2, 2), }\n";
+  for (int b = 0; b < 4; ++b) huge += static_cast<char>((dict.size() >> (8 * b)) & 0xFF);
+  huge += dict;
+  const std::string message = error_of(huge, InputFormat::npy);
+  EXPECT_EQ(message.substr(0, 20), "npy: dtype 'xxxxxxxx");
+  EXPECT_LT(message.size(), 200u) << "the dtype is quoted shortened";
 }
 
 TEST(PointReader, FormatFromExtension) {

@@ -99,7 +99,7 @@ TYPED_TEST(NoiseDomainTest, FieldIsFiniteAcrossTheDomainAtEveryFrequency) {
   }
 }
 
-// A trace that runs into the edge of the domain stops there: finite, and counted.
+// A trace that runs into the edge of the domain stops before it: finite, inside, and counted.
 TYPED_TEST(NoiseDomainTest, TraceStopsAtTheEdgeOfTheDomain) {
   constexpr int N = TypeParam::value;
   const DfvnField<N> field(kSeed, FieldOptions{kDefaultNoiseBasis, kMaxNoiseFrequency});  // the domain is |x_j| < 1
@@ -118,6 +118,7 @@ TYPED_TEST(NoiseDomainTest, TraceStopsAtTheEdgeOfTheDomain) {
     TraceStats stats;
     const Vec<N> x = tracer.trace(x0, 16.0 / speed, &stats);
     EXPECT_TRUE(x.allFinite()) << "x0 = " << x0.transpose();
+    EXPECT_TRUE(field.in_domain(x)) << "x0 = " << x0.transpose() << ", x = " << x.transpose();  // issue 23
     reached_edge += stats.outside_domain > 0;
   }
   EXPECT_GT(reached_edge, 100) << "too few traces reached the edge to test anything";

@@ -149,3 +149,15 @@ def test_trace_on_the_torus_wraps_and_in_the_cube_stays_inside():
         dfvn.trace(points, 0.4, domain="torus", bound="ramp")
     with pytest.raises(ValueError, match="periodic noise basis"):
         dfvn.field(points, domain="torus", noise="simplex")
+
+
+@pytest.mark.parametrize("integrator", ["rk4", "euler"])
+@pytest.mark.parametrize("reprojection", ["none", "gauss-newton", "newton"])
+def test_trace_ends_inside_the_noise_domain_for_any_time(integrator, reprojection):
+    """Issue 23: t = 1e16 carried points to |x| ~ 3e15, beyond the documented edge |F x| < 2^50."""
+    points = random_points(20, 3, seed=4)
+    for t in (1e16, -1e16, 1e300):
+        for steps in (1, 1000):
+            moved = dfvn.trace(points, t, integrator=integrator, reprojection=reprojection, steps=steps)
+            assert np.all(np.isfinite(moved))
+            assert np.abs(moved).max() < 2.0**50, (t, steps)

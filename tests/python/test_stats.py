@@ -95,3 +95,41 @@ def test_rdf_of_uniform_random_points_is_about_one():
 def test_stats_refuse_bad_input_with_a_clear_error(function, points, kwargs, words):
     with pytest.raises(ValueError, match=words):
         function(points, **kwargs)
+
+
+@pytest.mark.parametrize("side", [1e-300, 1e-150, 1e150, 1e200, 1e300])
+def test_nn_stats_and_rdf_scale_with_the_set(side):
+    """Issue 23: at extreme sides squared distances overflowed or underflowed (Inf, NaN, a crash)."""
+    points = np.random.default_rng(23).uniform(0.05, 0.95, (300, 3))
+    unit = dfvn.nn_stats(points)
+    scaled = dfvn.nn_stats(points * side, domain_side=side)
+    for name in ("min", "q01", "median", "mean"):
+        assert np.isfinite(scaled[name]) and scaled[name] / side == pytest.approx(unit[name], rel=0, abs=1e-14), name
+    assert scaled["median_scaled"] == pytest.approx(unit["median_scaled"], rel=1e-12)
+    r, g = dfvn.rdf(points, bins=10)
+    r_scaled, g_scaled = dfvn.rdf(points * side, domain_side=side, bins=10)
+    assert np.all(np.isfinite(r_scaled)) and np.all(np.isfinite(g_scaled))
+    np.testing.assert_allclose(r_scaled / side, r, rtol=1e-12)
+    np.testing.assert_allclose(g_scaled, g, rtol=1e-9)
+
+
+@pytest.mark.parametrize("side", [1e-310, 1e305, float("inf")])
+def test_sides_beyond_the_bound_are_refused_naming_it(side):
+    with pytest.raises(ValueError, match=r"domain_side .* outside \[2\^-1000, 2\^1000\]"):
+        dfvn.nn_stats(np.zeros((2, 2)), domain_side=side)
+
+
+@pytest.mark.parametrize(
+    "call, words",
+    [
+        (lambda: dfvn.sample("random", 3, n=2**40), r"n=1099511627776 in 3D .* lower n or raise the limit with max_memory_gib"),
+        (lambda: dfvn.sample("jitter", 3, grid=100, max_memory_gib=1e-6), r"grid=100 in 3D .* max_memory_gib"),
+        (lambda: dfvn.sample("cnj", 3, grid=4, frequency=1e15), r"frequency=1e\+15 .* grid=4"),
+        (lambda: dfvn.nn_stats(np.full((3, 2), 0.75), domain_side=0.5), r"give the side with domain_side"),
+    ],
+)
+def test_messages_name_the_keywords_not_the_command_line_options(call, words):
+    """Issue 23: the library's messages named --grid and --max-memory, which Python does not have."""
+    with pytest.raises(ValueError, match=words) as raised:
+        call()
+    assert "--" not in str(raised.value)

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 
 namespace dfvn {
 namespace {
@@ -237,6 +238,29 @@ TEST(CnjStudy, StudiesStepCountsAsCells) {
   EXPECT_NE(md.find(fmt::format("| 3 | turning-bands | {:g} | {:g} | 4 | ", config.frequencies[0], config.step_scales[0])),
             std::string::npos)
       << md;
+}
+
+// Issue 23: a frequency that CNJ refuses was reported without naming --frequencies (or the dimension).
+TEST(CnjStudy, ValuesOutsideCnjsRangeAreRefusedNamingTheirList) {
+  const auto message = [](const CnjStudyConfig& config) -> std::string {
+    try {
+      config.validate();
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  CnjStudyConfig config;
+  config.dimensions = {3};
+  config.frequencies = {0.2, 1e14};
+  EXPECT_EQ(message(config),
+            "--frequencies 1e+14 cycles per lattice spacing is a field frequency of 1.2e+15 in 3D (K = 12), outside the "
+            "noise's [2^-50, 2^50]");
+  config.frequencies = {1e-20};
+  EXPECT_NE(message(config).find("--frequencies 1e-20"), std::string::npos);
+  config.frequencies = {0.2};
+  config.step_scales = {1e30};
+  EXPECT_EQ(message(config), "--step-scales must be in (0, 2^20], got 1e+30");
 }
 
 }  // namespace

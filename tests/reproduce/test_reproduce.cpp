@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -97,6 +99,32 @@ TEST(ReproduceTable2, ThePapersConclusionsHoldStrictlyOnASmallImage) {
   EXPECT_LT(row(Integrator::rk4, 64, 1).rmse_second, row(Integrator::euler, 512, 0).rmse_second);
   ASSERT_EQ(result.timeline.size(), 1u);
   EXPECT_EQ(result.timeline[0].values.size(), 96u * 54u);
+}
+
+// Issue 23: --second-width 0 reported an all-zero "RMSE 384" column and conclusions "at 384", a
+// resolution never computed (the result's second configuration kept its default width). Without a
+// second resolution, the table, the checks and the CSV name the main resolution only.
+TEST(ReproduceTable2, WithoutASecondResolutionNothingIsSaidAboutOne) {
+  Table2Config config;
+  config.warp = shader_warp_config();
+  config.warp.width = 24;
+  config.warp.height = 12;
+  config.second_width = 0;
+  config.figure_times = {0.05};
+  const Table2Result result = run_table2(config);
+  EXPECT_EQ(result.second.width, 0);
+  const std::string md = table2_markdown(result);
+  for (const char* never : {"RMSE 384", "RMSE 0", "at 384,", "at 384)", "at 0,", "RMSE also at"})
+    EXPECT_EQ(md.find(never), std::string::npos) << never << " in:\n" << md;
+  const std::string dir = (std::filesystem::temp_directory_path() / "dfvn-table2-no-second").string();
+  std::filesystem::create_directories(dir);
+  write_table2(dir, result, [](const std::string&) {});
+  std::ifstream csv(std::filesystem::path(dir) / "table2.csv");
+  std::string header, line;
+  std::getline(csv, header);
+  std::getline(csv, line);
+  EXPECT_NE(line.find(",,,,"), std::string::npos) << "rmse_second,second_width,second_height empty: " << line;
+  std::filesystem::remove_all(dir);
 }
 
 TEST(ReproduceTable2, ShaderSettingIsTheShadersField) {

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include "io/csv.hpp"
+#include "io/json_report.hpp"
+
 #include <cmath>
 
 #include "stats/point_set_statistics.hpp"
@@ -40,6 +43,26 @@ TEST(PointSetStatistics, RejectsPointsOutsideTheDomain) {
   EXPECT_THROW(check_point_set(PointSet{2, {0.1, 0.2, 0.3, 1.2}, Box{0.0, 1.0}}), std::invalid_argument);
   EXPECT_NO_THROW(check_point_set(PointSet{2, {0.1, 0.2, 0.3, 1.2}, Box{0.0, 2.0}}));
   EXPECT_THROW(check_point_set(PointSet{2, {0.1, 0.2}, Box{0.0, 1.0}}), std::invalid_argument);
+}
+
+// Issue 23: an input named q"uo.csv was written into the CSV unescaped, and a name with the byte 0xFF
+// made the JSON writer throw its own exception text.
+TEST(PointSetStatistics, OddFileNamesAreEscapedInCsvAndJson) {
+  const PointSet points{2, {0.1, 0.2, 0.6, 0.7}, Box{0.0, 1.0}};
+  const PointSetStatistics statistics = measure_point_set(points, {});
+  const std::string row = point_statistics_csv_row("a \"b\", c.csv", "0", points, statistics, false);
+  EXPECT_EQ(row.substr(0, 17), "\"a \"\"b\"\", c.csv\",");
+  const std::string header = point_statistics_csv_header();
+  const std::string summary = realization_summary_rows(header.substr(0, header.size() - 1),
+                                                       {row.substr(0, row.size() - 1), row.substr(0, row.size() - 1)},
+                                                       {"input", "dim"}, "set");
+  EXPECT_EQ(summary.substr(0, 17), "\"a \"\"b\"\", c.csv\",") << "the quoted name splits as one field";
+  EXPECT_EQ(csv_quoted(""), "\"\"");
+  EXPECT_EQ(csv_quoted("x\ny"), "\"x\ny\"");
+  PointStatisticsRun run{"odd\xFF.csv", "csv", 1.0, {}, {statistics}, {2}, false};
+  std::string json;
+  ASSERT_NO_THROW(json = point_statistics_json(run));
+  EXPECT_NE(json.find("\"input\": \"odd\xEF\xBF\xBD.csv\""), std::string::npos) << json;  // U+FFFD
 }
 
 }  // namespace

@@ -32,7 +32,8 @@ TEST(PowerSpectrum, UniformRandomPointsAreFlatAtOne) {
     }
     EXPECT_NEAR(mean / count, 1.0, 0.05) << dimension << "D";
     // Isotropic: about 0 dB minus the averaging over 8 realizations (var / mean^2 = 1/8: -9 dB).
-    EXPECT_NEAR(s.anisotropy_db[max_frequency / 2], -9.0, 2.0) << dimension << "D";
+    ASSERT_TRUE(s.anisotropy_db[max_frequency / 2].has_value());
+    EXPECT_NEAR(*s.anisotropy_db[max_frequency / 2], -9.0, 2.0) << dimension << "D";
   }
 }
 
@@ -65,6 +66,28 @@ TEST(PowerSpectrum, SameForAnyThreadCount) {
   const std::vector<PointSet> sets = {uniform_random_points(3, 200, Box{0.0, 1.0}, 3, 0)};
   EXPECT_EQ(power_spectrum(sets, 4, 1).power, power_spectrum(sets, 4, 3).power);
   EXPECT_THROW(power_spectrum({uniform_random_points(4, 10, Box{0.0, 1.0}, 3, 0)}, 4, 1), std::invalid_argument);
+}
+
+// Issue 23: three identical points have the same power n at every frequency: zero variance over every
+// shell, whose anisotropy (-Inf dB) was written as -inf. It is undefined there, and written empty.
+TEST(PowerSpectrum, AnisotropyOfAConstantSpectrumIsNotDefined) {
+  for (int dimension : {2, 3}) {
+    PointSet identical{dimension, {}, Box{0.0, 1.0}};
+    for (int i = 0; i < 3; ++i)
+      for (int a = 0; a < dimension; ++a) identical.coordinates.push_back(0.3 + 0.1 * a);
+    const PowerSpectrum s = power_spectrum({identical}, 6, 2);
+    for (std::size_t r = 1; r < s.radial_mean.size(); ++r) {
+      EXPECT_NEAR(s.radial_mean[r], 3.0, 1e-12) << dimension << "D shell " << r;
+      EXPECT_FALSE(s.anisotropy_db[r].has_value()) << dimension << "D shell " << r << ": " << *s.anisotropy_db[r];
+    }
+    // Two points half the domain apart along x0: P = 0 at odd k0, 2 at even: variance, defined anisotropy.
+    const PointSet pair{dimension, dimension == 2 ? std::vector<double>{0.1, 0.2, 0.6, 0.2} : std::vector<double>{0.1, 0.2, 0.3, 0.6, 0.2, 0.3}, Box{0.0, 1.0}};
+    const PowerSpectrum p = power_spectrum({pair}, 6, 2);
+    for (std::size_t r = 1; r < p.radial_mean.size(); ++r) {
+      ASSERT_TRUE(p.anisotropy_db[r].has_value()) << dimension << "D shell " << r;
+      EXPECT_TRUE(std::isfinite(*p.anisotropy_db[r]));
+    }
+  }
 }
 
 }  // namespace
