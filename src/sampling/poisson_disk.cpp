@@ -191,6 +191,14 @@ class CellGrid {
     return look.drain();
   }
 
+  // Starts fetching the record of x's own cell, the first that conflicts() reads (hashed: nothing).
+  void prefetch(const double* x) const {
+    if (!dense_) return;
+    std::uint64_t key = 0;
+    for (int j = 0; j < N; ++j) key += static_cast<std::uint64_t>(cell_of(x[j])) * stride_[j];
+    __builtin_prefetch(&records_.data()[key]);
+  }
+
   // Inserting thread: true if a point with index >= since is closer than r to x.
   bool conflicts_since(const double* x, std::uint32_t since) const {
     const Query q = query(x);
@@ -558,14 +566,25 @@ class QueueProcess {
   // the grid holds now.
   void throw_candidates(const Entry<N>& entry, std::vector<double>& survivors, std::vector<std::uint32_t>& thrown) const {
     const std::uint64_t visit_key = hash_combine(hash_combine(key_, std::uint64_t{entry.point} + 1), entry.visit);
-    for (std::uint64_t t = 0; t < k_; ++t) {
-      RandomWords words{hash_combine(visit_key, t)};
-      double candidate[N];
-      uniform_in_annulus<N>(words, normal_, r_, candidate);
-      for (int j = 0; j < N; ++j) candidate[j] += entry.x[j];
-      if (!box_.contains(candidate, N) || grid_.conflicts(candidate)) continue;
-      survivors.insert(survivors.end(), candidate, candidate + N);
-      thrown.push_back(static_cast<std::uint32_t>(t));
+    // One candidate behind: candidate t's own cell is fetched while t + 1 is drawn.
+    double candidates[2][N];
+    bool pending = false;  // candidate t - 1 is in the domain and waits for its check
+    for (std::uint64_t t = 0; t <= k_; ++t) {
+      double* candidate = candidates[t % 2];
+      bool inside = false;
+      if (t < k_) {
+        RandomWords words{hash_combine(visit_key, t)};
+        uniform_in_annulus<N>(words, normal_, r_, candidate);
+        for (int j = 0; j < N; ++j) candidate[j] += entry.x[j];
+        inside = box_.contains(candidate, N);
+        if (inside) grid_.prefetch(candidate);
+      }
+      const double* previous = candidates[(t + 1) % 2];
+      if (pending && !grid_.conflicts(previous)) {
+        survivors.insert(survivors.end(), previous, previous + N);
+        thrown.push_back(static_cast<std::uint32_t>(t - 1));
+      }
+      pending = inside;
     }
   }
 
