@@ -176,6 +176,10 @@ struct FieldCommand {
   int dimension = 0;  // 0: the input's column count (3 with --diagnose)
   double frequency = 1.0;
   std::string noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
+  std::string domain = "free";
+  std::string bound = "eq13";
+  double boundary_width = 0.1;
+  CLI::Option* bound_options[2] = {};  // --bound, --boundary-width: only with a bounded domain
   std::string input;
   std::string output = "-";
   bool diagnose = false;
@@ -198,6 +202,20 @@ struct FieldCommand {
         ->capture_default_str()
         ->check(kNoiseFrequency);
     add_noise_option(*cmd, noise);
+    cmd->add_option("--domain", domain,
+                    "free (R^N), torus ([0,1)^N: the basis's periodic form, period 1 along every axis, at about F\n"
+                    "cycles per unit length), cube ([0,1]^N) or ball (its inscribed ball): f_1 turned into the\n"
+                    "boundary function by --bound, so c is tangent to the boundary (outside: the continuation)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"free", "torus", "cube", "ball"}));
+    bound_options[0] =
+        cmd->add_option("--bound", bound, "With --domain cube or ball: eq13 (the paper's Eq. 13) or ramp (Bridson et al. 2007)")
+            ->capture_default_str()
+            ->check(CLI::IsMember({"eq13", "ramp"}));
+    bound_options[1] = cmd->add_option("--boundary-width", boundary_width,
+                    "With --domain cube or ball: the bound's transition width in length units, in (0, 1/4]")
+        ->capture_default_str()
+        ->check(CLI::Range(std::nextafter(0.0, 1.0), 0.25));
     CLI::Option* input_option =
         cmd->add_option("--input", input, "Point file, CSV or whitespace-separated (default: standard input)")
             ->check(CLI::ExistingFile);
@@ -223,11 +241,27 @@ struct FieldCommand {
     return input.empty() ? std::string("standard input") : dfvn::quote_for_message(input, dfvn::kMaxPathEchoChars);
   }
 
+  dfvn::FieldOptions field_options() const {
+    dfvn::FieldOptions o{dfvn::parse_noise_basis(noise), frequency};
+    o.periodic = domain == "torus";
+    if (domain == "cube" || domain == "ball") {
+      o.constraint = domain == "cube" ? dfvn::FieldConstraint::inside_cube : dfvn::FieldConstraint::inside_ball;
+      o.transition_width = boundary_width;
+      o.bound = dfvn::parse_bound(bound);
+    }
+    return o;
+  }
+
   void run() {
     if (output != "-") dfvn::check_writable(output);
+    if (diagnose && (domain == "cube" || domain == "ball"))
+      fail("--diagnose measures on uniform random points in R^N or on the torus: --domain free or torus");
+    for (const CLI::Option* option : bound_options)
+      if (option->count() > 0 && domain != "cube" && domain != "ball")
+        fail(option->get_name() + " applies to --domain cube or ball, not " + domain);
     if (diagnose) {
       diagnosis.dimension = dimension > 0 ? dimension : 3;
-      diagnosis.field = {dfvn::parse_noise_basis(noise), frequency};
+      diagnosis.field = field_options();
       diagnosis.seed = common.seed;
       diagnosis.threads = common.threads;
       const dfvn::FieldDiagnosis d = dfvn::diagnose_field(diagnosis);
@@ -252,7 +286,7 @@ struct FieldCommand {
     dfvn::FieldQuery query;
     query.dimension = points.dimension;
     query.seed = common.seed;
-    query.field = {dfvn::parse_noise_basis(noise), frequency};
+    query.field = field_options();
     query.threads = common.threads;
     try {
       dfvn::write_file_atomically(output, dfvn::evaluate_field_csv(query, points));
@@ -276,7 +310,7 @@ struct SampleCommand {
   CommonOptions common;
   ProgressOptions progress;
   dfvn::SampleConfig config;
-  std::string methods = "cnj,jitter,pds,sobol";
+  std::string methods = "cnj,jitter-matched,jitter,pds,sobol";
   std::string protocol = "paper";
   std::string knn = "nanoflann";
   std::string integrator = "rk4";
@@ -288,8 +322,11 @@ struct SampleCommand {
   std::string points_dir;
   std::string json_path;
   std::string format = "csv";
-  std::string domain = "cube";
+  std::string domain{dfvn::to_string(dfvn::kDefaultCnjDomain)};
   std::string domain_mode = "conformant";
+  std::string bound = "eq13";
+  CLI::Option* bound_options[2] = {};  // --bound, --boundary-width: only where CNJ meets a boundary
+  CLI::Option* domain_option = nullptr;
   std::string on = "none";
   CLI::Option* methods_option = nullptr;
   std::uint64_t count = 0;
@@ -316,7 +353,12 @@ struct SampleCommand {
                     "power of 2; PDS reports when it saturates first)")
         ->check(CLI::Range(std::uint64_t{2}, std::uint64_t{1} << 40))
         ->excludes(grid_option);
-    methods_option = cmd->add_option("--methods", methods, "Comma list of cnj, jitter, pds, sobol, random, halton (scrambled unless --scramble none), lhs; with --on sphere: cnj,random")->capture_default_str();
+    methods_option =
+        cmd->add_option("--methods", methods,
+                        "Comma list of cnj, jitter-matched (jitter moved as far as CNJ: its RMS displacement, on CNJ's\n"
+                        "lattice and domain), jitter (the protocol's fixed half-width), pds, sobol, random, halton\n"
+                        "(scrambled unless --scramble none), lhs; with --on sphere: cnj,random")
+            ->capture_default_str();
     cmd->add_option("--protocol", protocol,
                     "paper: Section 5.1 as the paper ran it (lattice linspace(0.05, 0.95, K), jitter +-0.05, PDS\n"
                     "radius 0.1 and Sobol on [0, 0.1K]^N, Sobol count 2^round(log2 K^N)); unit: every method in\n"
@@ -354,9 +396,10 @@ struct SampleCommand {
         ->check(CLI::IsMember({"euler", "rk4"}));
     cmd->add_option("--steps", config.cnj.trace.steps,
                     fmt::format("CNJ integration steps M (steps of t / M, each followed by the reprojection); 0 = the\n"
-                                "domain mode's: 1 conformant (and --on sphere), {} drop (data/cnj_defaults.md,\n"
+                                "domain's: {} in the free field (--domain torus, --domain-mode drop), 1 in the bounded\n"
+                                "one (conformant cube or ball, and --on sphere) (data/cnj_defaults.md,\n"
                                 "data/cnj_steps_main_job.md)",
-                                dfvn::kDropModeSteps))
+                                dfvn::kFreeFieldSteps))
         ->capture_default_str()
         ->check(CLI::Range(0, dfvn::CnjOptions::kMaxSteps));
     cmd->add_option("--step-scale", config.cnj.step_scale,
@@ -373,10 +416,27 @@ struct SampleCommand {
     cmd->add_option("--reproject", reproject, "CNJ reprojection after each step: none, newton (Eq. 12), gauss-newton (Eq. 10-11)")
         ->capture_default_str()
         ->check(CLI::IsMember({"none", "newton", "gauss-newton"}));
-    cmd->add_option("--domain", domain,
-                    "Where CNJ's points stay: cube ([0,1]^N) or ball (its inscribed ball; the lattice clipped to it)")
-        ->capture_default_str()
-        ->check(CLI::IsMember({"cube", "ball"}));
+    domain_option = cmd->add_option("--domain", domain,
+                                    "Where CNJ's points stay: torus ([0,1)^N with opposite faces identified: a periodic\n"
+                                    "field, wrapped traces, the cell-centred lattice; no boundary at all), cube ([0,1]^N)\n"
+                                    "or ball (its inscribed ball; the lattice clipped to it). Not given: torus, or cube\n"
+                                    "when --domain-mode drop, --bound or --boundary-width asks for a boundary")
+                        ->capture_default_str()
+                        ->check(CLI::IsMember({"torus", "cube", "ball"}));
+    bound_options[0] = cmd->add_option("--bound", bound,
+                                       "How CNJ's field meets the boundary of --domain cube or ball (conformant): eq13\n"
+                                       "(the paper's Eq. 13) or ramp (Bridson et al. 2007's ramp of the noise)")
+                           ->capture_default_str()
+                           ->check(CLI::IsMember({"eq13", "ramp"}));
+    bound_options[1] =
+        cmd->add_option("--boundary-width", config.cnj.boundary_width,
+                        "The bound's transition width in lattice spacings (Eq. 13's alpha goes from 0 to 1 over it, the\n"
+                        "ramp's d0), at most a quarter of the cube's side")
+            ->capture_default_str()
+            ->check(finite_number(0.0, false, "POSITIVE"));
+    cmd->add_flag("--periodic", config.periodic_statistics,
+                  "Measure every set on the torus of its box: minimum-image nearest-neighbour distances and RDF\n"
+                  "(off: Euclidean distances in the box, as the paper measures)");
     cmd->add_option("--domain-mode", domain_mode,
                     "conformant: CNJ along the field bounded by the domain (Eq. 13), no point leaves; drop: the\n"
                     "free field, points that leave are dropped (the paper's protocol; reproduce table1 uses it)")
@@ -420,8 +480,19 @@ struct SampleCommand {
     config.cnj.trace.integrator = dfvn::parse_integrator(integrator);
     config.cnj.noise = dfvn::parse_noise_basis(noise);
     config.cnj.trace.reprojection = dfvn::parse_reprojection(reproject);
+    // Options that only mean something at a boundary put CNJ in the cube when no domain is named.
+    const bool asks_for_a_boundary =
+        domain_mode == "drop" || bound_options[0]->count() > 0 || bound_options[1]->count() > 0;
+    if (domain_option->count() == 0 && asks_for_a_boundary) domain = "cube";
     config.cnj.domain = dfvn::parse_cnj_domain(domain);
     config.cnj.domain_mode = dfvn::parse_domain_mode(domain_mode);
+    config.cnj.bound = dfvn::parse_bound(bound);
+    for (const CLI::Option* option : bound_options)
+      if (option->count() > 0 &&
+          (config.cnj.domain == dfvn::CnjDomain::torus || config.cnj.domain_mode == dfvn::DomainMode::drop))
+        throw std::invalid_argument(option->get_name() + " applies to conformant CNJ in --domain cube or ball; " +
+                                    (config.cnj.domain == dfvn::CnjDomain::torus ? "the torus has no boundary"
+                                                                                  : "drop mode traces the free field"));
     config.on = dfvn::parse_surface(on);
     if (config.on == dfvn::Surface::sphere && methods_option->count() == 0) methods = "cnj,random";
     config.methods.clear();
@@ -612,7 +683,7 @@ struct ReproduceCommand {
             "DIR/cnj_study.csv, DIR/cnj_study_jitter.csv, DIR/cnj_study.md and (with gnuplot) DIR/cnj_study.png;\n"
             "prints the Markdown as plain text.\n"
             "The CNJ defaults come from this study's rule (data/cnj_defaults.md).",
-            dfvn::kDropModeSteps));
+            dfvn::kFreeFieldSteps));
     s->add_option("--out", study.out_dir, "Output directory")->capture_default_str();
     s->add_option("--dims", study_dims, "Dimensions: a range or list within 3..7, e.g. 3-7 or 3,5")->capture_default_str();
     s->add_option("--seeds", study.seeds, "Seeds per cell (--seed, --seed + 1, ...)")
@@ -633,7 +704,7 @@ struct ReproduceCommand {
     s->add_option("--steps", study.steps,
                   fmt::format("Comma list of integration steps M per trace (RK4 steps of t / M, each followed by\n"
                               "the reprojection; Section 5.1 takes 1, the free field's default is {})",
-                              dfvn::kDropModeSteps))
+                              dfvn::kFreeFieldSteps))
         ->delimiter(',')
         ->capture_default_str()
         ->check(CLI::Range(1, dfvn::CnjOptions::kMaxSteps));
@@ -746,6 +817,7 @@ struct StatsCommand {
   std::string json_path;
   bool discrepancy = false;
   bool no_timing = false;
+  bool periodic = false;
   ProgressOptions progress;
 
   void add_to(CLI::App& parent) {
@@ -762,9 +834,12 @@ struct StatsCommand {
         ->check(CLI::IsMember({"csv", "npy", "dat"}));
     cmd->add_option("--domain-side", domain_side, "The points lie in [0, S]^N")->capture_default_str()->check(kPositiveFinite);
     cmd->add_flag("--discrepancy", discrepancy, "Also compute the four L2 discrepancies (O(points^2) work)");
-    cmd->add_option("--knn", knn, "KD-tree backend: nanoflann or flann")
+    cmd->add_option("--knn", knn, "KD-tree backend: nanoflann or flann (not used with --periodic)")
         ->capture_default_str()
         ->check(CLI::IsMember({"nanoflann", "flann"}));
+    cmd->add_flag("--periodic", periodic,
+                  "Measure on the torus [0,S)^N: minimum-image nearest-neighbour distances (opposite faces\n"
+                  "identified), as for sets made periodic (dfvn-sample --domain torus, UTK's periodic samplers)");
     cmd->add_option("-o,--output", output, "Statistics CSV ('-' = standard output)")->capture_default_str();
     cmd->add_option("--json", json_path, "Also write the statistics as JSON ('-' = standard output)");
     cmd->add_flag("--no-timing", no_timing, "Leave seconds_stats empty (and out of --json): identical files for identical input");
@@ -805,6 +880,7 @@ struct StatsCommand {
     options.discrepancy = discrepancy;
     options.knn = dfvn::parse_knn_backend(knn);
     options.threads = common.threads;
+    options.periodic = periodic;
     dfvn::ProgressReporter* reporter =
         progress.make(static_cast<int>(sets.size()) * dfvn::point_statistics_stage_count(options) + (spectrum_prefix.empty() ? 0 : 1));
     std::string csv = dfvn::point_statistics_csv_header();

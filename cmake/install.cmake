@@ -30,6 +30,8 @@ install(DIRECTORY src/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/dfvn
         PATTERN "parallel.hpp" EXCLUDE
         PATTERN "kd_tree.hpp" EXCLUDE
         PATTERN "trace_impl.hpp" EXCLUDE
+        PATTERN "turning_bands_kernel.hpp" EXCLUDE
+        PATTERN "periodic_images.hpp" EXCLUDE
         REGEX "integrate/trace_table.hpp" EXCLUDE)
 
 install(EXPORT dfvnTargets NAMESPACE dfvn:: DESTINATION ${DFVN_CMAKE_PACKAGE_DIR})

@@ -1,8 +1,10 @@
 // dfvn.field and dfvn.trace: the field of Eq. 8 and Algorithm 1 at the rows of a NumPy array.
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
 
 #include "core/dimension.hpp"
 #include "field/evaluate_points.hpp"
@@ -13,16 +15,33 @@ namespace dfvn::python {
 
 namespace {
 
-FieldOptions field_options(double frequency, const std::string& noise) {
-  return FieldOptions{parse_noise_basis(noise), frequency};
+// The field's options as the command line's `field` takes them: domain 'free', 'torus', 'cube' or 'ball';
+// the bound and its width only for a bounded one.
+FieldOptions field_options(double frequency, const std::string& noise, const std::string& domain,
+                           const std::optional<std::string>& bound, const std::optional<double>& boundary_width) {
+  FieldOptions o{parse_noise_basis(noise), frequency};
+  const bool bounded = domain == "cube" || domain == "ball";
+  if (!bounded && domain != "free" && domain != "torus")
+    throw py::value_error("unknown domain '" + domain + "' (allowed: free, torus, cube, ball)");
+  if (!bounded && (bound || boundary_width))
+    throw py::value_error("bound and boundary_width apply to domain 'cube' or 'ball', not '" + domain + "'");
+  o.periodic = domain == "torus";
+  if (bounded) {
+    o.constraint = domain == "cube" ? FieldConstraint::inside_cube : FieldConstraint::inside_ball;
+    o.bound = parse_bound(bound.value_or("eq13"));
+    o.transition_width = boundary_width.value_or(0.1);
+  }
+  return o;
 }
 
-py::tuple field(const PointArray& points, std::uint64_t seed, double frequency, const std::string& noise, int threads) {
+py::tuple field(const PointArray& points, std::uint64_t seed, double frequency, const std::string& noise,
+                const std::string& domain, const std::optional<std::string>& bound,
+                const std::optional<double>& boundary_width, int threads) {
   const PointRows in = point_rows(points, kMinDimension, kMaxDimension);
   FieldQuery query;
   query.dimension = in.dimension;
   query.seed = seed;
-  query.field = field_options(frequency, noise);
+  query.field = field_options(frequency, noise, domain, bound, boundary_width);
   query.threads = threads;
   py::array_t<double> velocity = new_array(in.rows, in.dimension);
   py::array_t<double> values = new_array(in.rows, in.dimension - 1);
@@ -37,12 +56,13 @@ py::tuple field(const PointArray& points, std::uint64_t seed, double frequency, 
 
 py::array_t<double> trace(const PointArray& points, double time, std::uint64_t seed, double frequency,
                           const std::string& noise, const std::string& integrator, const std::string& reprojection,
-                          int steps, int threads) {
+                          int steps, const std::string& domain, const std::optional<std::string>& bound,
+                          const std::optional<double>& boundary_width, int threads) {
   const PointRows in = point_rows(points, kMinDimension, kMaxDimension);
   TracePointsQuery query;
   query.dimension = in.dimension;
   query.seed = seed;
-  query.field = field_options(frequency, noise);
+  query.field = field_options(frequency, noise, domain, bound, boundary_width);
   query.trace.integrator = parse_integrator(integrator);
   query.trace.reprojection = parse_reprojection(reprojection);
   query.trace.steps = steps;
@@ -62,25 +82,33 @@ py::array_t<double> trace(const PointArray& points, double time, std::uint64_t s
 void bind_field(py::module_& module) {
   using namespace pybind11::literals;
   module.def("field", &field, "points"_a, py::kw_only(), "seed"_a = 1, "frequency"_a = 1.0,
-             "noise"_a = std::string(to_string(kDefaultNoiseBasis)), "threads"_a = 0,
+             "noise"_a = std::string(to_string(kDefaultNoiseBasis)), "domain"_a = "free", "bound"_a = py::none(),
+             "boundary_width"_a = py::none(), "threads"_a = 0,
              R"(The divergence-free field c(x) = cross(grad f_1, ..., grad f_{N-1}) (Eq. 8) at each point.
 
 points: (n, N) array, N = 2..8 (converted to float64 C order if it is not already).
 seed: the field's noise realization. frequency: cycles per unit length (one cycle = 2 pi / k_eff
 of the basis), in [2^-50, 2^50]. noise: 'turning-bands', 'simplex' or 'quintic-gradient'.
-threads: 0 = all cores (the result never depends on it).
+domain: 'free' (R^N), 'torus' (the basis's periodic form: period 1 along every axis, at about
+`frequency` cycles per unit length; turning-bands only), 'cube' ([0,1]^N) or 'ball' (its inscribed
+ball): f_1 turned into the boundary function so that c is tangent to the boundary, by bound 'eq13'
+(the paper's Eq. 13, the default) or 'ramp' (Bridson et al. 2007) over boundary_width (length units,
+(0, 1/4], default 0.1). threads: 0 = all cores (the result never depends on it).
 
 Returns (c, f): c (n, N), the field vector (RMS |c| = 1), and f (n, N-1), the noise values f_i(x);
 the same numbers as `dfvn-sample field` writes.)");
   module.def("trace", &trace, "points"_a, "t"_a, py::kw_only(), "seed"_a = 1, "frequency"_a = 1.0,
              "noise"_a = std::string(to_string(kDefaultNoiseBasis)), "integrator"_a = "rk4",
-             "reprojection"_a = "gauss-newton", "steps"_a = 1, "threads"_a = 0,
+             "reprojection"_a = "gauss-newton", "steps"_a = 1, "domain"_a = "free", "bound"_a = py::none(),
+             "boundary_width"_a = py::none(), "threads"_a = 0,
              R"(Trace each point along the field for time t (Algorithm 1); returns where they end, (n, N).
 
 integrator: 'euler' or 'rk4'; reprojection onto the iso-contours of the f_i after every step:
 'none', 'newton' (Eq. 12) or 'gauss-newton' (Eq. 10-11); steps: M, each of length t / M. The field
-options are those of dfvn.field. t < 0 traces backwards; a trace reaching the edge of the noise
-domain stops there.)");
+options are those of dfvn.field: on the torus the ends are wrapped into [0,1)^N; in the cube or the
+ball a trace that a long step carries out is traced again with 2, 4, ..., 64 times the steps (or
+stays at its start). t < 0 traces backwards; a trace reaching the edge of the noise domain stops
+there.)");
 }
 
 }  // namespace dfvn::python

@@ -35,6 +35,9 @@ struct SampleArguments {
   std::string integrator;
   std::string reprojection;
   int steps = 1;
+  std::optional<std::string> domain;
+  std::string domain_mode;
+  std::optional<std::string> bound;
   int threads = 0;
 };
 
@@ -64,6 +67,15 @@ SampleConfig sample_config(const SampleArguments& a) {
   config.cnj.trace.integrator = parse_integrator(a.integrator);
   config.cnj.trace.reprojection = parse_reprojection(a.reprojection);
   config.cnj.trace.steps = a.steps;
+  config.cnj.domain_mode = parse_domain_mode(a.domain_mode);
+  // As on the command line: without a domain, drop mode or a bound put CNJ in the cube.
+  const bool asks_for_a_boundary = config.cnj.domain_mode == DomainMode::drop || a.bound.has_value();
+  config.cnj.domain = a.domain ? parse_cnj_domain(*a.domain) : (asks_for_a_boundary ? CnjDomain::cube : kDefaultCnjDomain);
+  if (a.bound) {
+    if (config.cnj.domain == CnjDomain::torus || config.cnj.domain_mode == DomainMode::drop)
+      throw py::value_error("bound applies to conformant cnj in domain 'cube' or 'ball'");
+    config.cnj.bound = parse_bound(*a.bound);
+  }
   return config;
 }
 
@@ -98,18 +110,22 @@ void bind_sampling(py::module_& module) {
       [](const std::string& method, int dim, std::optional<int> grid, std::optional<std::uint64_t> n, std::uint64_t seed,
          const std::string& protocol, bool scramble, double radius, int ncandidates, const std::string& noise,
          double frequency, double step_scale, const std::string& integrator, const std::string& reprojection, int steps,
+         const std::optional<std::string>& domain, const std::string& domain_mode, const std::optional<std::string>& bound,
          int threads) {
         return sample(SampleArguments{method, dim, grid, n, seed, protocol, scramble, radius, ncandidates, noise, frequency,
-                                      step_scale, integrator, reprojection, steps, threads});
+                                      step_scale, integrator, reprojection, steps, domain, domain_mode, bound, threads});
       },
       "method"_a, "dim"_a, py::kw_only(), "grid"_a = py::none(), "n"_a = py::none(), "seed"_a = 1,
       "protocol"_a = "unit", "scramble"_a = true, "radius"_a = 0.0, "ncandidates"_a = 30,
       "noise"_a = std::string(to_string(cnj.noise)), "frequency"_a = cnj.frequency, "step_scale"_a = cnj.step_scale,
       "integrator"_a = std::string(to_string(cnj.trace.integrator)),
-      "reprojection"_a = std::string(to_string(cnj.trace.reprojection)), "steps"_a = cnj_steps(cnj), "threads"_a = 0,
+      "reprojection"_a = std::string(to_string(cnj.trace.reprojection)), "steps"_a = CnjOptions::kStepsByDomainMode,
+      "domain"_a = py::none(), "domain_mode"_a = std::string(to_string(cnj.domain_mode)), "bound"_a = py::none(),
+      "threads"_a = 0,
       R"(One point set as an (n, dim) float64 array, the same bits as `dfvn-sample --points DIR --format npy`.
 
-method: 'cnj' (curl noise jittering), 'jitter', 'pds' (Poisson disk), 'sobol', 'random', 'halton', 'lhs'.
+method: 'cnj' (curl noise jittering), 'jitter', 'jitter-matched' (jitter at CNJ's RMS displacement),
+'pds' (Poisson disk), 'sobol', 'random', 'halton', 'lhs'.
 dim: 2..8. Exactly one of grid (K: cnj and jitter move the K^N lattice, the others take its count) or n
 (a point count: pds, sobol, random, halton and lhs give n points, or pds fewer when it saturates, with a
 warning; cnj and jitter use the lattice K^N nearest to n; sobol warns unless n is a power of 2).
@@ -117,9 +133,13 @@ protocol: 'unit' (every method in [0,1]^dim at the density of a cell-centred lat
 paper's Section 5.1, as `dfvn-sample --protocol paper`, its default). scramble: Owen-scrambled Sobol,
 digit-permuted Halton (False: neither). radius, ncandidates: Poisson disk radius (0: the protocol's) and
 candidates per point. noise, frequency (cycles per lattice spacing), step_scale, integrator,
-reprojection, steps: CNJ's options, defaults as the command line's. cnj keeps every point in [0,1]^dim
-(the field bounded by the cube, Eq. 13, as the command line's default), so steps 0 (the domain mode's
-count) means 1. threads: 0 = all cores (the result never depends on it).)");
+reprojection, steps (0: the domain's count, 2 in the free field and 1 in the bounded one): CNJ's options,
+defaults as the command line's. domain: 'torus' ([0,1)^dim with opposite faces identified, a periodic
+field, every point kept), 'cube' or 'ball'; None: the torus, or the cube with drop mode or a bound.
+domain_mode: 'conformant' (the field bounded by the domain, every point kept) or 'drop' (the free field,
+points that leave are dropped; not on the torus); bound: how the bounded field meets the cube's or
+ball's boundary, 'eq13' (None: the default) or 'ramp'.
+threads: 0 = all cores (the result never depends on it).)");
 }
 
 }  // namespace dfvn::python

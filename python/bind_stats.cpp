@@ -25,10 +25,11 @@ PointSet point_set(const PointRows& in, double domain_side) {
   return points;
 }
 
-py::dict nn_stats(const PointArray& array, double domain_side, const std::string& knn, int threads) {
+py::dict nn_stats(const PointArray& array, double domain_side, const std::string& knn, bool periodic, int threads) {
   const PointSet points = point_set(point_rows(array, 1, kMaxDimension, 2), domain_side);
   PointSetStatisticsOptions options;
   options.knn = parse_knn_backend(knn);
+  options.periodic = periodic;
   options.threads = threads;
   NearestNeighbourSummary s;
   {
@@ -46,12 +47,13 @@ py::dict nn_stats(const PointArray& array, double domain_side, const std::string
 }
 
 py::tuple rdf(const PointArray& array, double domain_side, double r_max, int bins, std::uint64_t max_queries,
-              std::uint64_t seed, int threads) {
+              std::uint64_t seed, bool periodic, int threads) {
   const PointSet points = point_set(point_rows(array, kMinDimension, kMaxDimension, 2), domain_side);
   RdfOptions options;
   options.r_max = r_max;
   options.bins = bins;
   options.max_queries = max_queries;
+  options.periodic = periodic;
   options.validate();
   RdfCurve curve;
   {
@@ -66,19 +68,21 @@ py::tuple rdf(const PointArray& array, double domain_side, double r_max, int bin
 void bind_stats(py::module_& module) {
   using namespace pybind11::literals;
   module.def("nn_stats", &nn_stats, "points"_a, py::kw_only(), "domain_side"_a = 1.0, "knn"_a = "nanoflann",
-             "threads"_a = 0,
+             "periodic"_a = false, "threads"_a = 0,
              R"(Nearest-neighbour statistics of a point set in [0, domain_side]^N, N = 1..8 (Table 1's).
 
 Returns a dict: points, min, q01 (1% quantile), median, mean and median_scaled (the median times
 (points / volume)^(1/N): 1 for a cubic lattice), as `dfvn-sample stats` computes them. knn: the
-exact KD-tree, 'nanoflann' or 'flann' (the same distances).)");
+exact KD-tree, 'nanoflann' or 'flann' (the same distances). periodic: minimum-image distances on the
+torus [0, domain_side)^N (`dfvn-sample stats --periodic`; as scipy's cKDTree(..., boxsize=side)).)");
   module.def("rdf", &rdf, "points"_a, py::kw_only(), "domain_side"_a = 1.0, "r_max"_a = 0.0, "bins"_a = 50,
-             "max_queries"_a = 20000, "seed"_a = 1, "threads"_a = 0,
+             "max_queries"_a = 20000, "seed"_a = 1, "periodic"_a = false, "threads"_a = 0,
              R"(Radial distribution function g(r) of a point set in [0, domain_side]^N, N = 2..8, with the
 translation edge correction (E g = 1 for uniform random points). Returns (r, g): bin centres and values.
 
 r_max: 0 = 2.5 mean spacings; bins: number of bins; max_queries: a seeded subset of about this many
-query points (0 = all); seed: which subset. As `dfvn-sample --rdf` computes it.)");
+query points (0 = all); seed: which subset. periodic: minimum-image distances on the torus, no edge
+correction, r_max below half the side. As `dfvn-sample --rdf` computes it.)");
 }
 
 }  // namespace dfvn::python

@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "core/message_text.hpp"
+
 namespace dfvn {
 
 std::string_view to_string(FieldConstraint constraint) {
@@ -16,6 +18,20 @@ std::string_view to_string(FieldConstraint constraint) {
     case FieldConstraint::on_sphere: return "sphere";
   }
   return "?";
+}
+
+Bound parse_bound(std::string_view name) {
+  for (Bound bound : kAllBounds)
+    if (name == to_string(bound)) return bound;
+  throw std::invalid_argument("unknown bound " + quote_for_message(name) + " (allowed: " + bound_names() + ")");
+}
+
+std::string_view to_string(Bound bound) { return bound == Bound::eq13 ? "eq13" : "ramp"; }
+
+std::string bound_names() {
+  std::string names;
+  for (Bound bound : kAllBounds) names += (names.empty() ? "" : ", ") + std::string(to_string(bound));
+  return names;
 }
 
 double noise_gradient_rms(int dimension) {
@@ -30,6 +46,17 @@ double smoothstep_c2(double u, double* derivative) {
   }
   if (derivative) *derivative = 30.0 * u * u * (1.0 - u) * (1.0 - u);
   return u * u * u * (10.0 + u * (-15.0 + 6.0 * u));
+}
+
+double bridson_ramp(double r, double* derivative) {
+  const double a = std::abs(r);
+  if (a >= 1.0) {
+    if (derivative) *derivative = 0.0;
+    return r > 0.0 ? 1.0 : -1.0;
+  }
+  const double r2 = r * r;
+  if (derivative) *derivative = (15.0 - 30.0 * r2 + 15.0 * r2 * r2) / 8.0;
+  return r * (15.0 - 10.0 * r2 + 3.0 * r2 * r2) / 8.0;
 }
 
 template <int N>
@@ -97,6 +124,26 @@ void blend(double g, double d, const Vec<N>& grad_d, double alpha, const Vec<N>&
   gradient = (1.0 - alpha) * g * grad_d + alpha * gradient + (noise - g * d) * grad_alpha;
 }
 
+// The ramp bound: f_1 = ramp(d / w) f~ and grad f_1 = ramp grad f~ + f~ ramp'(d / w) / w grad d.
+template <int N>
+void ramp(double w, double d, const Vec<N>& grad_d, double& value, Vec<N>& gradient) {
+  double slope = 0.0;
+  const double scale = bridson_ramp(d / w, &slope);
+  gradient = scale * gradient + (value * slope / w) * grad_d;
+  value *= scale;
+}
+
+// The ramp where the boundary function d (the cube's H or the ball's signed distance) is below w. For the
+// cube H <= min_k t_k: deeper than w from every face H may still be below w (near an edge or a corner),
+// so H decides.
+template <int N, double (*kBoundaryFunction)(const Vec<N>&, Vec<N>&)>
+void ramp_inside(double w, const Vec<N>& x, double& value, Vec<N>& gradient) {
+  Vec<N> grad_d;
+  const double d = kBoundaryFunction(x, grad_d);
+  if (d >= w) return;
+  ramp<N>(w, d, grad_d, value, gradient);
+}
+
 template <int N>
 void replace_inside_cube(double g, double w, const Vec<N>& x, double& value, Vec<N>& gradient) {
   // alpha = prod_j a_j with a_j = S(x_j / w) S((1 - x_j) / w), and d alpha / d x_j = a_j' prod_{i != j} a_i.
@@ -144,8 +191,9 @@ void replace_on_sphere(double g, const Vec<N>& x, double& value, Vec<N>& gradien
 }  // namespace
 
 template <int N>
-ConstraintFunction<N>::ConstraintFunction(FieldConstraint constraint, double transition_width)
-    : constraint_(constraint), width_(transition_width), gradient_rms_(noise_gradient_rms(N)) {
+ConstraintFunction<N>::ConstraintFunction(FieldConstraint constraint, double transition_width, Bound bound)
+    : constraint_(constraint), width_(transition_width), bound_(bound), gradient_rms_(noise_gradient_rms(N)) {
+  parse_bound(to_string(bound));  // an unknown enum value throws
   switch (constraint) {
     case FieldConstraint::none:
       throw std::invalid_argument("a constraint function needs a constraint (cube, ball or sphere)");
@@ -159,16 +207,41 @@ ConstraintFunction<N>::ConstraintFunction(FieldConstraint constraint, double tra
       if (N < 3) throw std::invalid_argument("a field on the sphere needs N >= 3 (in 2D no noise function is left)");
       break;
   }
+  replace_ = choose_replacement(constraint, bound);
+}
+
+template <int N>
+auto ConstraintFunction<N>::choose_replacement(FieldConstraint constraint, Bound bound) -> Replacement {
+  const bool ramped = bound == Bound::ramp;
+  switch (constraint) {
+    case FieldConstraint::inside_cube:
+      if (ramped)
+        return [](const ConstraintFunction& f, const Vec<N>& x, double& v, Vec<N>& g) {
+          ramp_inside<N, cube_boundary_function<N>>(f.width_, x, v, g);
+        };
+      return [](const ConstraintFunction& f, const Vec<N>& x, double& v, Vec<N>& g) {
+        replace_inside_cube<N>(f.gradient_rms_, f.width_, x, v, g);
+      };
+    case FieldConstraint::inside_ball:
+      if (ramped)
+        return [](const ConstraintFunction& f, const Vec<N>& x, double& v, Vec<N>& g) {
+          ramp_inside<N, ball_boundary_function<N>>(f.width_, x, v, g);
+        };
+      return [](const ConstraintFunction& f, const Vec<N>& x, double& v, Vec<N>& g) {
+        replace_inside_ball<N>(f.gradient_rms_, f.width_, x, v, g);
+      };
+    case FieldConstraint::on_sphere:
+      return [](const ConstraintFunction& f, const Vec<N>& x, double& v, Vec<N>& g) {
+        replace_on_sphere<N>(f.gradient_rms_, x, v, g);
+      };
+    case FieldConstraint::none: break;
+  }
+  throw std::invalid_argument("a constraint function needs a constraint (cube, ball or sphere)");
 }
 
 template <int N>
 void ConstraintFunction<N>::replace(const Vec<N>& x, double& value, Vec<N>& gradient) const {
-  switch (constraint_) {
-    case FieldConstraint::inside_cube: replace_inside_cube<N>(gradient_rms_, width_, x, value, gradient); return;
-    case FieldConstraint::inside_ball: replace_inside_ball<N>(gradient_rms_, width_, x, value, gradient); return;
-    case FieldConstraint::on_sphere: replace_on_sphere<N>(gradient_rms_, x, value, gradient); return;
-    case FieldConstraint::none: return;
-  }
+  replace_(*this, x, value, gradient);
 }
 
 #define DFVN_INSTANTIATE_CONSTRAINT(N)                                                   \

@@ -15,24 +15,65 @@ namespace dfvn {
 
 void FieldOptions::validate() const {
   check_noise_frequency(frequency);
+  parse_bound(to_string(bound));  // an unknown enum value throws
+  if (periodic && constraint != FieldConstraint::none)
+    throw std::invalid_argument(fmt::format("the torus has no boundary: a periodic field takes no {} constraint",
+                                            to_string(constraint)));
+  if (periodic && noise != NoiseBasis::turning_bands)
+    throw std::invalid_argument(fmt::format("the torus needs a periodic noise basis: turning-bands (not {})", to_string(noise)));
   if ((constraint == FieldConstraint::inside_cube || constraint == FieldConstraint::inside_ball) &&
       !(transition_width > 0.0 && transition_width <= 0.25))
     throw std::invalid_argument(
         fmt::format("the boundary's transition width must be in (0, 1/4], got {:g}", transition_width));
 }
 
+namespace {
+
+// Roberts' R_N generator: alpha_j = phi^-(j+1) for phi the positive root of x^(N+1) = x + 1, the
+// N-dimensional golden ratio (Newton's iteration from 2 converges to it).
+template <int N>
+Vec<N> kronecker_alpha() {
+  double phi = 2.0;
+  for (int k = 0; k < 64; ++k) phi -= (std::pow(phi, N + 1) - phi - 1.0) / ((N + 1) * std::pow(phi, N) - 1.0);
+  Vec<N> alpha;
+  for (int j = 0; j < N; ++j) alpha[j] = std::fmod(std::pow(phi, -(j + 1)), 1.0);
+  return alpha;
+}
+
+// The amplitude that gives RMS |c| = 1 over the torus for periodic functions (unit amplitude, scale 1):
+// c scales as A^(N-1), so A = (mean |c|^2)^(-1 / (2 (N-1))).
+template <int N>
+double torus_amplitude(const NoiseFunctions<N>& noise) {
+  constexpr int kPoints = 1 << 14;
+  const Vec<N> alpha = kronecker_alpha<N>();
+  double sum = 0.0;  // in point order: deterministic
+  for (int k = 0; k < kPoints; ++k) {
+    Vec<N> x;
+    for (int j = 0; j < N; ++j) x[j] = std::fmod(0.5 + k * alpha[j], 1.0);
+    sum += cross<N>(noise.evaluate(x).gradient).squaredNorm();
+  }
+  const double mean = sum / kPoints;
+  if (!(mean > 0.0 && std::isfinite(mean))) throw std::logic_error("periodic noise field without motion");
+  return std::pow(mean, -0.5 / (N - 1));
+}
+
+}  // namespace
+
 template <int N>
 DfvnField<N>::DfvnField(std::uint64_t seed, const FieldOptions& options)
-    : noise_((options.validate(), make_noise_functions<N>(options.noise, seed))),
+    : noise_((options.validate(), options.periodic ? make_periodic_noise_functions<N>(options.noise, seed, options.frequency)
+                                                   : make_noise_functions<N>(options.noise, seed))),
       options_(options),
       seed_(seed),
-      scale_(2.0 * std::numbers::pi * options.frequency / noise_->wavenumber()),
-      amplitude_(noise_->amplitude()) {
+      scale_(options.periodic ? 1.0 : 2.0 * std::numbers::pi * options.frequency / noise_->wavenumber()),
+      amplitude_(options.periodic ? torus_amplitude<N>(*noise_) : noise_->amplitude()),
+      frequency_(options.periodic ? noise_->wavenumber() / (2.0 * std::numbers::pi) : options.frequency) {
   if (options.constraint != FieldConstraint::none)
-    constraint_ = std::make_shared<const ConstraintFunction<N>>(options.constraint, options.transition_width);
+    constraint_ =
+        std::make_shared<const ConstraintFunction<N>>(options.constraint, options.transition_width, options.bound);
   // The noise domain bounds F x; each basis is safe for its own scale s = 2 pi F / k_eff there
   // (noise/noise_domain.hpp), which the checks of the tests assert.
-  assert(scale_ > 0.0 && scale_ <= 2.0 * options.frequency);
+  assert(options.periodic || (scale_ > 0.0 && scale_ <= 2.0 * options.frequency));
 }
 
 template <int N>

@@ -90,7 +90,7 @@ FieldDiagnosis diagnose(const DiagnosisOptions& options) {
     d.divergence_max = defined.back();
   }
   d.wavenumber_measured = sum_value2 > 0.0 ? std::sqrt(sum_gradient2 / sum_value2) : 0.0;
-  d.wavenumber_expected = 2.0 * std::numbers::pi * options.field.frequency;
+  d.wavenumber_expected = 2.0 * std::numbers::pi * field.frequency();  // on the torus: the realised one
   d.seconds = stopwatch.seconds();
   return d;
 }
@@ -105,16 +105,19 @@ FieldDiagnosis diagnose_field(const DiagnosisOptions& options) {
 std::string diagnosis_csv_header() {
   return "dim,noise,frequency,seed,points,periods,rms_speed,median_over_rms,q10_over_rms,fraction_below_1pct,"
          "divergence_median,divergence_p95,divergence_max,still_points,k_eff_measured,k_eff_expected,"
-         "k_eff_ratio,seconds\n";
+         "k_eff_ratio,seconds,domain\n";
 }
 
 std::string diagnosis_csv_row(const FieldDiagnosis& d) {
   const DiagnosisOptions& o = d.options;
-  return fmt::format("{},{},{:g},{},{},{:g},{:.6g},{:.6g},{:.6g},{:.6g},{:.3g},{:.3g},{:.3g},{},{:.6g},{:.6g},{:.4f},{:.3f}\n",
+  return fmt::format("{},{},{:g},{},{},{:g},{:.6g},{:.6g},{:.6g},{:.6g},{:.3g},{:.3g},{:.3g},{},{:.6g},{:.6g},{:.4f},{:.3f},{}\n",
                      o.dimension, to_string(o.field.noise), o.field.frequency, o.seed, o.points, o.periods, d.rms_speed,
                      d.median_over_rms, d.q10_over_rms, d.fraction_below_1_percent, d.divergence_median,
                      d.divergence_p95, d.divergence_max, d.still_points, d.wavenumber_measured,
-                     d.wavenumber_expected, d.wavenumber_measured / d.wavenumber_expected, d.seconds);
+                     d.wavenumber_expected, d.wavenumber_measured / d.wavenumber_expected, d.seconds,
+                     o.field.periodic ? "torus" : std::string(o.field.constraint == FieldConstraint::none
+                                                                  ? "free"
+                                                                  : to_string(o.field.constraint)));
 }
 
 }  // namespace dfvn

@@ -38,7 +38,8 @@ struct FieldDiagnosis {
   double divergence_p95 = 0.0;
   double divergence_max = 0.0;
   std::uint64_t still_points = 0;  // points where the difference Jacobian is exactly zero (excluded)
-  // sqrt(sum_i E|grad f_i|^2 / sum_i E f_i^2), measured, against 2 pi F.
+  // sqrt(sum_i E|grad f_i|^2 / sum_i E f_i^2), measured, against 2 pi F (on the torus F is the
+  // field's realised frequency, DfvnField::frequency()).
   double wavenumber_measured = 0.0;
   double wavenumber_expected = 0.0;
   double seconds = 0.0;

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/parallel.hpp"
+#include "core/torus.hpp"
 #include "integrate/trace_table.hpp"
 
 namespace dfvn {
@@ -21,10 +22,17 @@ TraceStats trace_points(const TracePointsQuery& query, const double* points, std
       const Vec<N> x = Eigen::Map<const Vec<N>>(points + i * N);
       if (!field.in_domain(x)) field.check_in_domain(x, fmt::format("point {}", i + 1));
     }
-    // Every end point is accepted: no constraint, nothing traced again.
-    return trace_table<N>(field, query.trace, points, rows, out, query.time, [](const Vec<N>&) { return true; },
-                          OnReject::drop, query.threads, {})
-        .stats;
+    // In a bounded domain an end that a long step carried out is traced again with more steps, as CNJ does;
+    // otherwise every end is accepted. On the torus the ends are wrapped into [0,1)^N.
+    const FieldConstraint constraint = query.field.constraint;
+    const bool bounded = constraint == FieldConstraint::inside_cube || constraint == FieldConstraint::inside_ball;
+    const TraceStats stats =
+        trace_table<N>(field, query.trace, points, rows, out, query.time,
+                       [&](const Vec<N>& x) { return !bounded || satisfies_constraint<N>(constraint, x); },
+                       bounded ? OnReject::retrace : OnReject::drop, query.threads, {})
+            .stats;
+    if (query.field.periodic) wrap_to_unit_torus(out, rows * N);
+    return stats;
   });
 }
 

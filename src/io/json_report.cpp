@@ -84,7 +84,12 @@ std::string sampling_json(const SampleConfig& config, const std::vector<Sampling
                        {"frequency", config.cnj.frequency},
                        {"frequency_unit", "cycles per lattice spacing"},
                        {"reprojection", to_string(config.cnj.trace.reprojection)},
-                       {"reproject_iterations", config.cnj.trace.reproject_iterations}};
+                       {"reproject_iterations", config.cnj.trace.reproject_iterations},
+                       {"domain", to_string(config.cnj.domain)},
+                       {"domain_mode", to_string(config.cnj.domain_mode)},
+                       {"bound", to_string(config.cnj.bound)},
+                       {"boundary_width", config.cnj.boundary_width}};
+  parameters["periodic_statistics"] = config.periodic_statistics;
   // null: the protocol's radius, which each pds result gives under "generation".
   parameters["pds"] = {{"radius", config.pds_radius > 0.0 ? ordered_json(config.pds_radius) : ordered_json(nullptr)},
                        {"candidates", config.pds_candidates}};

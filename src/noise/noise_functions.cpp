@@ -39,12 +39,28 @@ std::shared_ptr<const NoiseFunctions<N>> make_noise_functions(NoiseBasis basis, 
   throw std::invalid_argument("unknown noise basis");
 }
 
+template <int N>
+std::shared_ptr<const NoiseFunctions<N>> make_periodic_noise_functions(NoiseBasis basis, std::uint64_t seed,
+                                                                       double frequency) {
+  if (basis != NoiseBasis::turning_bands)
+    throw std::invalid_argument("the torus needs a periodic noise basis: turning-bands (not " + std::string(to_string(basis)) +
+                                ")");
+  return std::make_shared<const TurningBandsNoise<N>>(seed, typename TurningBandsNoise<N>::Periodic{frequency});
+}
+
 template std::shared_ptr<const NoiseFunctions<2>> make_noise_functions<2>(NoiseBasis, std::uint64_t);
+template std::shared_ptr<const NoiseFunctions<2>> make_periodic_noise_functions<2>(NoiseBasis, std::uint64_t, double);
 template std::shared_ptr<const NoiseFunctions<3>> make_noise_functions<3>(NoiseBasis, std::uint64_t);
+template std::shared_ptr<const NoiseFunctions<3>> make_periodic_noise_functions<3>(NoiseBasis, std::uint64_t, double);
 template std::shared_ptr<const NoiseFunctions<4>> make_noise_functions<4>(NoiseBasis, std::uint64_t);
+template std::shared_ptr<const NoiseFunctions<4>> make_periodic_noise_functions<4>(NoiseBasis, std::uint64_t, double);
 template std::shared_ptr<const NoiseFunctions<5>> make_noise_functions<5>(NoiseBasis, std::uint64_t);
+template std::shared_ptr<const NoiseFunctions<5>> make_periodic_noise_functions<5>(NoiseBasis, std::uint64_t, double);
 template std::shared_ptr<const NoiseFunctions<6>> make_noise_functions<6>(NoiseBasis, std::uint64_t);
+template std::shared_ptr<const NoiseFunctions<6>> make_periodic_noise_functions<6>(NoiseBasis, std::uint64_t, double);
 template std::shared_ptr<const NoiseFunctions<7>> make_noise_functions<7>(NoiseBasis, std::uint64_t);
+template std::shared_ptr<const NoiseFunctions<7>> make_periodic_noise_functions<7>(NoiseBasis, std::uint64_t, double);
 template std::shared_ptr<const NoiseFunctions<8>> make_noise_functions<8>(NoiseBasis, std::uint64_t);
+template std::shared_ptr<const NoiseFunctions<8>> make_periodic_noise_functions<8>(NoiseBasis, std::uint64_t, double);
 
 }  // namespace dfvn

@@ -56,4 +56,12 @@ class NoiseFunctions {
 template <int N>
 std::shared_ptr<const NoiseFunctions<N>> make_noise_functions(NoiseBasis basis, std::uint64_t seed);
 
+// The basis's periodic form for the torus [0,1)^N: functions with period 1 along every axis, evaluated
+// at x itself (no scale), at about `frequency` cycles per unit length (wavenumber() / 2 pi says exactly).
+// Only turning bands has one (noise/turning_bands.hpp); throws std::invalid_argument for the others and
+// for a frequency outside the periodic form's range.
+template <int N>
+std::shared_ptr<const NoiseFunctions<N>> make_periodic_noise_functions(NoiseBasis basis, std::uint64_t seed,
+                                                                       double frequency);
+
 }  // namespace dfvn

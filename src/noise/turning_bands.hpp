@@ -26,8 +26,21 @@ namespace dfvn {
 // Every band of every function has its own hash key: the N-1 functions share nothing, so they are
 // independent and E|cross(grad n_i)|^2 = N! (sigma^2 / N)^(N-1) in closed form (Cauchy-Binet over
 // uncorrelated gradient coordinates), which gives amplitude() without measurement.
-// Not periodic and free of transcendental functions: per evaluation 2N(N-1) bands, each a dot product,
-// two hashes and a polynomial.
+// Free of transcendental functions: per evaluation 2N(N-1) bands, each a dot product, two hashes and a
+// polynomial.
+//
+// The periodic form (the torus [0,1)^N, TurningBandsNoise(seed, Periodic{F})) has period 1 along every
+// axis and is evaluated at x itself (the field's scale is 1): band b is p_b(V_b . x + o_b) with an
+// integer knot vector V_b and knot slopes hashed from the knot index modulo L_b, the largest power of
+// two that divides every entry of V_b. Shifting x by e_j shifts the band coordinate by V_bj, a multiple
+// of L_b, so every band, and every n_i with its gradient, repeats. V_b = 2 round(s' w_b / 2), the frame row w_b scaled by s' ~ s = 2 pi F / k_eff
+// (the knots per unit length of the aperiodic form at F cycles per unit length) and rounded to even
+// entries (2 e_j along w_b's largest coordinate if that rounds to 0): even entries make L_b >= 2, so
+// neighbouring knots keep independent slopes and the band's spectrum is the aperiodic one's (with
+// L_b = 1 a band would be one fixed wave, of k_eff 6.39 instead of 3.62 per knot). s' is the scale
+// whose mean |V_b|^2 comes nearest s^2, so that the realised frequency (wavenumber() / 2 pi) is close
+// to F; it cannot go below one knot pair per unit length (F ~ 1.15). Rounding makes the directions
+// only roughly isotropic, the more so the lower F: at F ~ 1 most V_b are 2 e_j.
 template <int N>
 class TurningBandsNoise final : public NoiseFunctions<N> {
  public:
@@ -37,13 +50,23 @@ class TurningBandsNoise final : public NoiseFunctions<N> {
 
   // `simd`: which build of the evaluation kernel runs (core/simd.hpp); every build gives the same bits.
   explicit TurningBandsNoise(std::uint64_t seed, Simd simd = Simd::best);
+  // The periodic form at about `frequency` cycles per unit length (throws std::invalid_argument outside
+  // [kMinNoiseFrequency, kMaxPeriodicFrequency]).
+  struct Periodic {
+    double frequency;
+  };
+  TurningBandsNoise(std::uint64_t seed, Periodic periodic, Simd simd = Simd::best);
+  // Integer knot entries stay exact in doubles, and band coordinates far below 2^52, up to this.
+  static constexpr double kMaxPeriodicFrequency = 0x1p20;
 
   NoiseSample<N, N - 1> evaluate(const Vec<N>& x) const override;
   double wavenumber() const override;
   double amplitude() const override;
 
-  // One row per band; band b = i * kBandsPerFunction + k belongs to function i.
+  // One row per band; band b = i * kBandsPerFunction + k belongs to function i. Unit frame rows, or the
+  // integer knot vectors V_b of the periodic form.
   Eigen::Matrix<double, kBands, N> directions() const;
+  bool periodic() const { return periodic_; }
 
  private:
   // The evaluation kernel works on vectors of up to 8 doubles (AVX-512): 8 bands at a time for the
@@ -57,7 +80,14 @@ class TurningBandsNoise final : public NoiseFunctions<N> {
   std::array<double, kPaddedBands> offsets_;
   std::array<std::array<double, kLanes>, kBands> rows_;    // rows_[b] = w_b, zero-padded
   std::array<std::uint64_t, kPaddedBands> keys_{};
+  std::array<std::int64_t, kPaddedBands> knot_masks_{};  // periodic form: L_b - 1 (0 in padding bands)
+  bool periodic_ = false;
+  double wavenumber_ = 0.0, amplitude_ = 0.0;
   void (*kernel_)(const TurningBandsNoise& noise, const Vec<N>& x, NoiseSample<N, N - 1>& out);
+
+  // The frames and per-band keys and offsets, shared by both forms.
+  void draw_bands(std::uint64_t seed);
+  void set_rows(const Eigen::Matrix<double, kBands, N>& rows);
 };
 
 // Moments of one band, E p^2 and E p'^2, over a uniform position and slopes uniform in [-1, 1].

@@ -191,6 +191,7 @@ CnjStudyResult run_cnj_study(const CnjStudyConfig& config, const StageProgress& 
               options.frequency = frequency;
               options.step_scale = step_scale;
               options.trace.steps = steps;
+              options.domain = CnjDomain::cube;
               options.domain_mode = DomainMode::drop;  // the free field: the study measures interior packing
               const CnjResult cnj = curl_noise_jitter(lattice, options, row.seed, config.threads);
               // Every traced point, inside [0,1]^N or not: x = site + displacement.
@@ -375,6 +376,7 @@ std::string cnj_study_markdown(const CnjStudyResult& result) {
   const CnjStudyConfig& cfg = result.config;
   const auto cells = cell_means(result);
   CnjOptions defaults;
+  defaults.domain = CnjDomain::cube;
   defaults.domain_mode = DomainMode::drop;  // as every run of the study
   const int default_steps = cnj_steps(defaults);
   const bool paper = cfg.lattice == StudyLattice::paper;

@@ -34,8 +34,8 @@ struct CnjStudyConfig {
   std::vector<double> frequencies = {0.1, 0.2, 0.35, 0.5, 1.0};  // cycles per lattice spacing
   std::vector<double> step_scales = {0.2, 0.35, 0.5};           // t = C dbar(N) spacing
   // Integration steps M per trace (Algorithm 1, each step RK4 + reprojection): Section 5.1's one, and
-  // the free field's default (kDropModeSteps).
-  std::vector<int> steps = {1, kDropModeSteps};
+  // the free field's default (kFreeFieldSteps).
+  std::vector<int> steps = {1, kFreeFieldSteps};
   int threads = 0;
   std::string out_dir = "out/cnj-study";
 

@@ -83,6 +83,7 @@ Table1Result run_table1(const Table1Config& config, const StageProgress& progres
     c.methods = {Method::cnj, Method::jitter, Method::pds, Method::sobol};
     c.protocol = Protocol::paper;
     c.cnj = config.cnj;
+    c.cnj.domain = CnjDomain::cube;
     c.cnj.domain_mode = DomainMode::drop;  // the paper's protocol: points that leave [0,1]^N are dropped
     c.rdf = config.rdf;
     result.configs.push_back(c);

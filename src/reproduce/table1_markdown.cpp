@@ -16,6 +16,7 @@ std::string method_title(Method m) {
   switch (m) {
     case Method::cnj: return "CNJ";
     case Method::jitter: return "Jittering";
+    case Method::jitter_matched: return "Jittering (matched)";
     case Method::pds: return "PDS";
     case Method::sobol: return "Sobol";
     case Method::random: return "Random";

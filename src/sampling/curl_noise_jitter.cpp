@@ -13,12 +13,20 @@
 namespace dfvn {
 
 CnjDomain parse_cnj_domain(std::string_view name) {
+  if (name == "torus") return CnjDomain::torus;
   if (name == "cube") return CnjDomain::cube;
   if (name == "ball") return CnjDomain::ball;
-  throw std::invalid_argument("unknown domain " + quote_for_message(name) + " (allowed: cube, ball)");
+  throw std::invalid_argument("unknown domain " + quote_for_message(name) + " (allowed: torus, cube, ball)");
 }
 
-std::string_view to_string(CnjDomain domain) { return domain == CnjDomain::cube ? "cube" : "ball"; }
+std::string_view to_string(CnjDomain domain) {
+  switch (domain) {
+    case CnjDomain::torus: return "torus";
+    case CnjDomain::cube: return "cube";
+    case CnjDomain::ball: return "ball";
+  }
+  return "?";
+}
 
 DomainMode parse_domain_mode(std::string_view name) {
   if (name == "conformant") return DomainMode::conformant;
@@ -30,7 +38,8 @@ std::string_view to_string(DomainMode mode) { return mode == DomainMode::conform
 
 int cnj_steps(const CnjOptions& options) {
   if (options.trace.steps != CnjOptions::kStepsByDomainMode) return options.trace.steps;
-  return options.domain_mode == DomainMode::drop ? kDropModeSteps : 1;
+  const bool free_field = options.domain_mode == DomainMode::drop || options.domain == CnjDomain::torus;
+  return free_field ? kFreeFieldSteps : 1;
 }
 
 TraceOptions cnj_trace_options(const CnjOptions& options) {
@@ -49,6 +58,11 @@ void CnjOptions::validate() const {
   check_noise_frequency(frequency);
   parse_noise_basis(to_string(noise));  // an unknown enum value throws
   parse_cnj_domain(to_string(domain));
+  parse_bound(to_string(bound));
+  if (domain == CnjDomain::torus && domain_mode == DomainMode::drop)
+    throw std::invalid_argument("the torus has no boundary to drop points at: use domain mode conformant (its traces wrap)");
+  if (domain == CnjDomain::torus && noise != NoiseBasis::turning_bands)
+    throw std::invalid_argument(fmt::format("the torus needs a periodic noise basis: turning-bands (not {})", to_string(noise)));
   if (!(boundary_width > 0.0 && boundary_width <= 1e6))
     throw std::invalid_argument(fmt::format("boundary width must be in (0, 1e6] lattice spacings, got {:g}", boundary_width));
   // Refinements double the steps kMaxRefinements times: keep that an int.
@@ -63,24 +77,30 @@ double cnj_transition_width(const CnjOptions& options, const LatticeSpec& lattic
 namespace {
 
 bool site_in_domain(const double* x, int dimension, CnjDomain domain) {
-  if (domain == CnjDomain::cube) return true;
+  if (domain != CnjDomain::ball) return true;
   double from_centre2 = 0.0;
   for (int j = 0; j < dimension; ++j) from_centre2 += (x[j] - 0.5) * (x[j] - 0.5);
   return from_centre2 < 0.25;
 }
 
 FieldConstraint field_constraint(const CnjOptions& options) {
-  if (options.domain_mode == DomainMode::drop) return FieldConstraint::none;
+  if (options.domain_mode == DomainMode::drop || options.domain == CnjDomain::torus) return FieldConstraint::none;
   return options.domain == CnjDomain::cube ? FieldConstraint::inside_cube : FieldConstraint::inside_ball;
 }
 
 }  // namespace
 
+LatticeSpec cnj_lattice(const LatticeSpec& lattice, CnjDomain domain) {
+  LatticeSpec out = lattice;
+  if (domain == CnjDomain::torus) out.protocol = Protocol::unit;
+  return out;
+}
+
 std::vector<double> cnj_start_sites(const LatticeSpec& lattice, CnjDomain domain) {
   const int n = lattice.dimension;
   const std::uint64_t count = lattice.point_count();
   std::vector<double> sites;
-  sites.reserve(domain == CnjDomain::cube ? count * n : 0);
+  sites.reserve(domain != CnjDomain::ball ? count * n : 0);
   std::vector<double> x(static_cast<std::size_t>(n));
   for (std::uint64_t i = 0; i < count; ++i) {
     lattice.point(i, x.data());
@@ -91,7 +111,7 @@ std::vector<double> cnj_start_sites(const LatticeSpec& lattice, CnjDomain domain
 
 std::uint64_t cnj_start_count(const LatticeSpec& lattice, CnjDomain domain) {
   const std::uint64_t count = lattice.point_count();
-  if (domain == CnjDomain::cube) return count;
+  if (domain != CnjDomain::ball) return count;
   std::uint64_t inside = 0;
   std::vector<double> x(static_cast<std::size_t>(lattice.dimension));
   for (std::uint64_t i = 0; i < count; ++i) {
@@ -102,25 +122,28 @@ std::uint64_t cnj_start_count(const LatticeSpec& lattice, CnjDomain domain) {
 }
 
 template <int N>
-CnjResult curl_noise_jitter(const LatticeSpec& lattice, const CnjOptions& options, std::uint64_t seed, int threads,
-                            const FractionProgress& progress) {
+CnjResult curl_noise_jitter(const LatticeSpec& requested_lattice, const CnjOptions& options, std::uint64_t seed,
+                            int threads, const FractionProgress& progress) {
   options.validate();
-  if (lattice.dimension != N) throw std::invalid_argument("lattice dimension does not match");
+  if (requested_lattice.dimension != N) throw std::invalid_argument("lattice dimension does not match");
+  const LatticeSpec lattice = cnj_lattice(requested_lattice, options.domain);
+  const bool torus = options.domain == CnjDomain::torus;
   CnjResult result;
   result.trace_time = options.step_scale * average_neighbour_distance(N) * lattice.spacing();
-  result.field_frequency = options.frequency / lattice.spacing();
-  const FieldConstraint constraint = field_constraint(options);
-  const DfvnField<N> field(seed, FieldOptions{options.noise, result.field_frequency, constraint,
-                                              cnj_transition_width(options, lattice)});
+  const DfvnField<N> field(seed, FieldOptions{options.noise, options.frequency / lattice.spacing(),
+                                              field_constraint(options), cnj_transition_width(options, lattice),
+                                              options.bound, torus});
+  result.field_frequency = field.frequency();
   const Box domain{0.0, 1.0, options.domain == CnjDomain::ball};
   const std::vector<double> sites = cnj_start_sites(lattice, options.domain);
   const auto count = static_cast<std::int64_t>(sites.size() / N);
   result.started = static_cast<std::uint64_t>(count);
 
   std::vector<double> ends(sites.size());
+  // On the torus every end is accepted (and wrapped below); elsewhere the domain decides.
   const TracedPoints traced = trace_table<N>(
       field, cnj_trace_options(options), sites.data(), static_cast<std::size_t>(count), ends.data(), result.trace_time,
-      [&](const Vec<N>& x) { return domain.contains(x.data(), N); },
+      [&](const Vec<N>& x) { return torus || domain.contains(x.data(), N); },
       options.domain_mode == DomainMode::conformant ? OnReject::retrace : OnReject::drop, threads, progress);
   // Compact and sum in index order, so every output is the same for any thread count.
   result.points = PointSet{N, {}, domain};
@@ -136,6 +159,7 @@ CnjResult curl_noise_jitter(const LatticeSpec& lattice, const CnjOptions& option
     else
       ++result.dropped;
   }
+  if (torus) wrap_to_unit_torus(result.points.coordinates.data(), result.points.coordinates.size());
   result.rms_displacement = count > 0 ? std::sqrt(total_squared_displacement / static_cast<double>(count)) : 0.0;
   result.retraced = traced.retraced;
   result.kept_at_site = traced.kept_at_start;

@@ -1,9 +1,10 @@
 // Curl noise jittering (CNJ, Section 5.1): every lattice point is traced along the DFVN field for a
 // short time (Algorithm 1). The field has no sources or sinks, so points move without clustering.
-// In a domain (Section 5.4): conformant CNJ traces along the field bounded by the domain (Eq. 13,
-// field/constraint.hpp), so no point leaves and every run returns every lattice point; drop mode
-// traces along the free field and drops the points that leave (Bærentzen et al. 2023, the paper's
-// Section 5.1 protocol).
+// On the torus [0,1)^N (the default): the field is periodic and the traces wrap, so there is no
+// boundary at all and every lattice point is kept. In a bounded domain (Section 5.4): conformant CNJ
+// traces along the field bounded by the domain (Eq. 13 or Bridson's ramp, field/constraint.hpp), so no
+// point leaves and every run returns every lattice point; drop mode traces along the free field and
+// drops the points that leave (Bærentzen et al. 2023, the paper's Section 5.1 protocol).
 #pragma once
 
 #include <cstdint>
@@ -11,25 +12,31 @@
 #include <vector>
 
 #include "core/progress.hpp"
+#include "field/constraint.hpp"
 #include "integrate/trace.hpp"
 #include "sampling/lattice.hpp"
 #include "sampling/point_set.hpp"
 
 namespace dfvn {
 
-// cube: [0,1]^N. ball: its inscribed ball (centre 1/2, radius 1/2); the start set is the lattice
-// clipped to it.
-enum class CnjDomain { cube, ball };
-CnjDomain parse_cnj_domain(std::string_view name);  // "cube" | "ball"
+// torus: [0,1)^N with opposite faces identified; the start set is the cell-centred K^N lattice (the
+// only one that tiles it) whatever the protocol. cube: [0,1]^N. ball: its inscribed ball (centre 1/2,
+// radius 1/2); the start set is the lattice clipped to it. data/boundary_shares.md: why the torus is
+// the default.
+enum class CnjDomain { torus, cube, ball };
+inline constexpr CnjDomain kDefaultCnjDomain = CnjDomain::torus;
+CnjDomain parse_cnj_domain(std::string_view name);  // "torus" | "cube" | "ball"
 std::string_view to_string(CnjDomain domain);
-// conformant: the field bounded by the domain (Eq. 13); drop: the free field, points that leave are dropped.
+// conformant: the field bounded by the domain (`bound`); drop: the free field, points that leave are
+// dropped. The torus has no boundary: it takes conformant (its traces wrap), and drop is refused.
 enum class DomainMode { conformant, drop };
 DomainMode parse_domain_mode(std::string_view name);  // "conformant" | "drop"
 std::string_view to_string(DomainMode mode);
 
 struct CnjOptions {
   // RK4 with Gauss-Newton reprojection after each step. trace.steps = kStepsByDomainMode (the default)
-  // takes the domain mode's step count, cnj_steps(): kDropModeSteps for drop, 1 for conformant.
+  // takes the domain's step count, cnj_steps(): kFreeFieldSteps for the free field (drop mode, the
+  // torus), 1 for the bounded field (conformant cube and ball).
   static constexpr int kStepsByDomainMode = 0;
   TraceOptions trace{.steps = kStepsByDomainMode};
   // At most this many steps: conformant refinements double them kMaxRefinements times, which must stay
@@ -48,8 +55,9 @@ struct CnjOptions {
   // spacings has left the unit cube unless its streamline loops); the bound keeps every
   // displacement, and the sum of their squares, far from overflow.
   static constexpr double kMaxStepScale = 0x1p20;
-  CnjDomain domain = CnjDomain::cube;
+  CnjDomain domain = kDefaultCnjDomain;
   DomainMode domain_mode = DomainMode::conformant;
+  Bound bound = Bound::eq13;  // conformant cube and ball: how f_1 meets the boundary (field/constraint.hpp)
   // Eq. (13)'s transition width w in lattice spacings: alpha goes from 0 on the boundary to 1 at w,
   // capped at 1/4 (field/constraint.hpp). Half a spacing: the unit protocol's outermost lattice layer
   // (half a spacing from the faces) starts exactly where alpha reaches 1, so every point starts in
@@ -68,14 +76,16 @@ struct CnjOptions {
 };
 
 // The integration steps M when CnjOptions::trace.steps is kStepsByDomainMode:
-//  drop (the free field): 2, the choice of the CNJ study's rule (data/cnj_defaults.md). One RK4 step
-//    over the default trace time does not follow the flow from 5D on: on the paper's 7D lattice
-//    (data/cnj_paper_lattice.md, 10 seeds) its mean minimum NN distance is 0.210 spacings against
-//    0.259 with 2 steps, and CNJ's nn_min only ties with jitter's at equal RMS displacement; with 2
-//    steps it beats it in every dimension 3-7.
-//  conformant: 1. In the bounded field the closest pairs form at the walls, and more steps pack worse
-//    there while the CNJ stage takes longer (data/cnj_steps_main_job.md: the 7D main job, seeds 1-5).
-inline constexpr int kDropModeSteps = 2;
+//  the free field (drop mode, and the torus, which has no boundary either): 2, the choice of the CNJ
+//    study's rule (data/cnj_defaults.md). One RK4 step over the default trace time does not follow the
+//    flow from 5D on: on the paper's 7D lattice (data/cnj_paper_lattice.md, 10 seeds) its mean minimum
+//    NN distance is 0.210 spacings against 0.259 with 2 steps, and CNJ's nn_min only ties with
+//    jitter's at equal RMS displacement; with 2 steps it beats it in every dimension 3-7. On the torus
+//    the same holds (data/boundary_shares.md: the 7D main job).
+//  the bounded field (conformant cube and ball): 1. There the closest pairs form at the walls, and
+//    more steps pack worse while the CNJ stage takes longer (data/cnj_steps_main_job.md: the 7D main
+//    job in the bounded cube, seeds 1-5).
+inline constexpr int kFreeFieldSteps = 2;
 int cnj_steps(const CnjOptions& options);
 // options.trace with its steps resolved (cnj_steps).
 TraceOptions cnj_trace_options(const CnjOptions& options);
@@ -83,21 +93,25 @@ TraceOptions cnj_trace_options(const CnjOptions& options);
 // The transition width w in length units for a lattice: min(boundary_width * spacing, 1/4).
 double cnj_transition_width(const CnjOptions& options, const LatticeSpec& lattice);
 
-// The start sites: the K^N lattice (cube) or its points strictly inside the inscribed ball (ball),
-// in lattice order; sites x N, row-major.
+// The lattice CNJ starts from: `lattice`, or its cell-centred form on the torus.
+LatticeSpec cnj_lattice(const LatticeSpec& lattice, CnjDomain domain);
+
+// The start sites: the K^N lattice (cube, torus) or its points strictly inside the inscribed ball
+// (ball), in lattice order; sites x N, row-major.
 std::vector<double> cnj_start_sites(const LatticeSpec& lattice, CnjDomain domain);
 std::uint64_t cnj_start_count(const LatticeSpec& lattice, CnjDomain domain);
 
 struct CnjResult {
-  PointSet points;                  // in the domain: [0,1]^N or its inscribed ball
+  PointSet points;                  // in the domain: [0,1)^N (torus), [0,1]^N or its inscribed ball
   std::uint64_t started = 0;        // sites traced
   std::uint64_t dropped = 0;        // drop mode: points that left the domain
   std::uint64_t retraced = 0;       // conformant: traces that ended outside and were traced again with more steps
   std::uint64_t kept_at_site = 0;   // conformant: retraced points that no refinement kept inside (stay at their site)
   double trace_time = 0.0;          // t
-  double field_frequency = 0.0;     // frequency / spacing
+  double field_frequency = 0.0;     // frequency / spacing (on the torus: the one its wave vectors realise)
   double rms_displacement = 0.0;    // over all traced points, dropped ones included
-  // x - x0 of every traced point (dropped ones included), started x N row-major in site order.
+  // x - x0 of every traced point (dropped ones included; on the torus before wrapping), started x N
+  // row-major in site order.
   std::vector<double> displacements;
   TraceStats trace_stats;
 };

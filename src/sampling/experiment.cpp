@@ -20,10 +20,13 @@
 #include "sampling/latin_hypercube.hpp"
 #include "sampling/poisson_disk.hpp"
 #include "stats/geodesic.hpp"
+#include "stats/periodic_neighbours.hpp"
 
 namespace dfvn {
 
 namespace {
+
+bool is_lattice_method(Method m) { return m == Method::cnj || m == Method::jitter || m == Method::jitter_matched; }
 
 double physical_memory_bytes() {
   const long pages = ::sysconf(_SC_PHYS_PAGES);
@@ -35,11 +38,7 @@ double physical_memory_bytes() {
 
 std::vector<std::string> sampling_warnings(const SampleConfig& config) {
   std::vector<std::string> warnings;
-  const bool has = [&] {
-    for (Method m : config.methods)
-      if (m == Method::cnj || m == Method::jitter) return true;
-    return false;
-  }();
+  const bool has = std::any_of(config.methods.begin(), config.methods.end(), is_lattice_method);
   if (config.count > 0 && has) {
     const std::uint64_t lattice_points = config.lattice().point_count();
     if (lattice_points != config.count)
@@ -95,6 +94,7 @@ MethodPlan plan_method(const SampleConfig& config, Method method) {
       }
       break;
     case Method::jitter:
+    case Method::jitter_matched:
     case Method::random:
       break;
     case Method::pds:
@@ -114,8 +114,7 @@ MethodPlan plan_method(const SampleConfig& config, Method method) {
       break;
   }
   // -n: every method that is not a lattice makes exactly the count asked for.
-  const bool lattice_method = method == Method::cnj || method == Method::jitter;
-  if (config.count > 0 && !lattice_method) plan.requested = config.count;
+  if (config.count > 0 && !is_lattice_method(method)) plan.requested = config.count;
   return plan;
 }
 
@@ -159,9 +158,13 @@ void SampleConfig::validate() const {
       if (m != Method::cnj && m != Method::random)
         throw std::invalid_argument(fmt::format("--on sphere takes --methods cnj and random, not {}", to_string(m)));
     if (compute_rdf) throw std::invalid_argument("--rdf is for points in a cube, not --on sphere");
+  } else if (periodic_statistics && has_cnj && cnj.domain == CnjDomain::ball) {
+    throw std::invalid_argument("--periodic measures on the torus of a cube, not --domain ball");
   } else if (compute_rdf && has_cnj && cnj.domain == CnjDomain::ball) {
     throw std::invalid_argument("--rdf's edge correction is for cubes, not --domain ball");
   }
+  if (std::find(methods.begin(), methods.end(), Method::jitter_matched) != methods.end() && cnj.domain == CnjDomain::ball)
+    throw std::invalid_argument("jitter-matched jitters a K^N lattice: it needs --domain torus or cube, not ball");
   if (!std::isfinite(pds_radius) || pds_radius < 0.0) throw std::invalid_argument("--pds-radius must be a finite number > 0");
   if (pds_candidates < 1) throw std::invalid_argument("--pds-candidates must be at least 1");
   if (!std::isfinite(max_memory_gib) || max_memory_gib < 0.0) throw std::invalid_argument("--max-memory must be >= 0");
@@ -178,6 +181,9 @@ void SampleConfig::validate() const {
     const MethodPlan plan = plan_method(*this, m);
     if (m == Method::sobol && plan.requested > (std::uint64_t{1} << 32))
       throw std::invalid_argument("Sobol supports at most 2^32 points");
+    if (compute_rdf && periodic_statistics && rdf.r_max >= 0.5 * plan.domain.side)
+      throw std::invalid_argument(fmt::format("--rdf-max {:g} with --periodic must be below half the {} set's side ({:g})",
+                                              rdf.r_max, to_string(m), 0.5 * plan.domain.side));
     if (compute_rdf && rdf.r_max > 0.0) {
       try {
         check_rdf_resolution(dimension, plan.domain.side, std::min(rdf.r_max, 0.999 * plan.domain.side), rdf.bins);
@@ -206,8 +212,10 @@ void SampleConfig::validate() const {
         grid, dimension, lattice_points, byte_size(need), byte_size(limit)));
 }
 
-static PointSet generate_points(const SampleConfig& config, const MethodPlan& plan, MethodResult& result,
-                         const StageProgress& progress) {
+namespace {
+
+PointSet generate_points(const SampleConfig& config, const MethodPlan& plan, MethodResult& result,
+                         SamplingContext& context, const StageProgress& progress) {
   const LatticeSpec lattice = config.lattice();
   const std::string stage(to_string(plan.method));
   const FractionProgress report = [&](double f) {
@@ -229,6 +237,7 @@ static PointSet generate_points(const SampleConfig& config, const MethodPlan& pl
         return std::move(r.points);
       }
       CnjResult r = curl_noise_jitter(lattice, config.cnj, config.seed, config.threads, report);
+      context.cnj_rms_displacement = r.rms_displacement;
       facts.frequency = config.cnj.frequency;
       facts.field_frequency = r.field_frequency;
       facts.trace_time = r.trace_time;
@@ -238,9 +247,10 @@ static PointSet generate_points(const SampleConfig& config, const MethodPlan& pl
       facts.kept_at_site = r.kept_at_site;
       result.notes = fmt::format("{} noise; {} domain; {}", to_string(config.cnj.noise), to_string(config.cnj.domain),
                                  to_string(config.cnj.domain_mode));
-      if (config.cnj.domain == CnjDomain::cube)  // the ball's clipped lattice has no K^N neighbour structure
-        result.displacement =
-            summarize_lattice_displacements(config.dimension, config.grid, lattice.spacing(), r.displacements);
+      if (config.cnj.domain != CnjDomain::ball)  // the ball's clipped lattice has no K^N neighbour structure
+        result.displacement = summarize_lattice_displacements(config.dimension, config.grid,
+                                                              cnj_lattice(lattice, config.cnj.domain).spacing(),
+                                                              r.displacements);
       return std::move(r.points);
     }
     case Method::jitter: {
@@ -249,6 +259,21 @@ static PointSet generate_points(const SampleConfig& config, const MethodPlan& pl
       result.displacement = summarize_lattice_displacements(config.dimension, config.grid, lattice.spacing(),
                                                             lattice_displacements(lattice, points));
       return points;
+    }
+    case Method::jitter_matched: {
+      if (!context.cnj_rms_displacement)  // CNJ has not run: its displacements, without its points
+        context.cnj_rms_displacement =
+            curl_noise_jitter(lattice, config.cnj, config.seed, config.threads).rms_displacement;
+      const bool torus = config.cnj.domain == CnjDomain::torus;
+      const LatticeSpec cnj_sites = cnj_lattice(lattice, config.cnj.domain);
+      MatchedJitter j = jitter_matching_rms(cnj_sites, *context.cnj_rms_displacement,
+                                            torus ? JitterBoundary::wrap : JitterBoundary::reflect, config.seed,
+                                            config.threads);
+      facts.half_width = j.half_width;
+      result.notes = fmt::format("CNJ's RMS displacement; {}", torus ? "wrapped on the torus" : "reflected at the faces");
+      result.displacement =
+          summarize_lattice_displacements(config.dimension, config.grid, cnj_sites.spacing(), j.displacements);
+      return std::move(j.points);
     }
     case Method::random:
       if (config.on == Surface::sphere) {
@@ -281,9 +306,17 @@ static PointSet generate_points(const SampleConfig& config, const MethodPlan& pl
   throw std::logic_error("unknown method");
 }
 
-void generate_points(const SampleConfig& config, MethodResult& result, const StageProgress& progress) {
-  result.points = generate_points(config, result.plan, result, progress);
+}  // namespace
+
+void generate_points(const SampleConfig& config, MethodResult& result, SamplingContext& context,
+                     const StageProgress& progress) {
+  result.points = generate_points(config, result.plan, result, context, progress);
   result.point_count = result.points.size();
+}
+
+void generate_points(const SampleConfig& config, MethodResult& result, const StageProgress& progress) {
+  SamplingContext context;
+  generate_points(config, result, context, progress);
 }
 
 namespace {
@@ -296,7 +329,7 @@ std::string out_of_memory_message(const SampleConfig& config, const MethodPlan& 
 }
 
 // Generate one point set, then its statistics.
-MethodResult run_method(const SampleConfig& config, const MethodPlan& plan, bool keep_points,
+MethodResult run_method(const SampleConfig& config, const MethodPlan& plan, bool keep_points, SamplingContext& context,
                         const StageProgress& progress, const std::function<void(const MethodResult&)>& on_result) {
   const Method method = plan.method;
   MethodResult result;
@@ -304,7 +337,7 @@ MethodResult run_method(const SampleConfig& config, const MethodPlan& plan, bool
   const std::string name(to_string(method));
   if (progress) progress(name, 0.0);
   Stopwatch stopwatch;
-  generate_points(config, result, progress);
+  generate_points(config, result, context, progress);
   result.seconds_generate = stopwatch.seconds();
   if (!config.compute_statistics) {
     if (on_result) on_result(result);
@@ -325,6 +358,9 @@ MethodResult run_method(const SampleConfig& config, const MethodPlan& plan, bool
   if (config.on == Surface::sphere)  // great-circle distances
     result.nearest = summarize_geodesic_nearest_neighbours(
         geodesic_nearest_neighbour_distances(result.points, config.knn, config.threads), config.dimension);
+  else if (config.periodic_statistics)  // minimum-image distances on the torus of the set's box
+    result.nearest = summarize_nearest_neighbours(
+        periodic_nearest_neighbour_distances(result.points, config.threads, report_statistics), result.points);
   else
     result.nearest = summarize_nearest_neighbours(
         nearest_neighbour_distances(result.points, config.knn, config.threads, report_statistics), result.points);
@@ -336,7 +372,9 @@ MethodResult run_method(const SampleConfig& config, const MethodPlan& plan, bool
       if (progress) progress(rdf_stage, f);
     };
     report_rdf(0.0);
-    result.rdf = radial_distribution(result.points, config.rdf, config.seed, config.threads, report_rdf);
+    RdfOptions rdf = config.rdf;
+    rdf.periodic = config.periodic_statistics;
+    result.rdf = radial_distribution(result.points, rdf, config.seed, config.threads, report_rdf);
   }
   if (on_result) on_result(result);
   if (!keep_points) result.points = PointSet{result.points.dimension, {}, result.points.domain};
@@ -365,10 +403,11 @@ std::vector<MethodResult> run_sampling(const SampleConfig& config, bool keep_poi
                                        const std::function<void(const MethodResult&)>& on_result) {
   config.validate();
   std::vector<MethodResult> results;
+  SamplingContext context;
   for (Method method : config.methods) {
     const MethodPlan plan = plan_method(config, method);
     try {
-      results.push_back(run_method(config, plan, keep_points, progress, on_result));
+      results.push_back(run_method(config, plan, keep_points, context, progress, on_result));
     } catch (const std::bad_alloc&) {
       throw std::runtime_error(out_of_memory_message(config, plan));
     } catch (const std::length_error&) {  // a std::vector longer than its max_size()

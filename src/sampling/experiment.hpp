@@ -25,7 +25,8 @@ struct SampleConfig {
   int grid = 6;
   std::uint64_t seed = 1;
   int threads = 0;
-  std::vector<Method> methods = {Method::cnj, Method::jitter, Method::pds, Method::sobol};
+  // The main job's: CNJ, jitter at CNJ's RMS displacement, the paper's fixed jitter, Poisson disk, Sobol.
+  std::vector<Method> methods = {Method::cnj, Method::jitter_matched, Method::jitter, Method::pds, Method::sobol};
   Protocol protocol = Protocol::paper;
   KnnBackend knn = KnnBackend::nanoflann;
   CnjOptions cnj;  // cnj.domain and cnj.domain_mode: where CNJ's points stay and how
@@ -36,7 +37,10 @@ struct SampleConfig {
   Scramble scramble = Scramble::owen;
   bool compute_statistics = true;  // false (--no-stats): generate the sets only
   bool compute_rdf = false;
-  RdfOptions rdf;
+  RdfOptions rdf;  // rdf.periodic follows periodic_statistics
+  // Nearest-neighbour statistics and the RDF with minimum-image distances on the torus of each set's
+  // box (stats/periodic_neighbours.hpp), for every method; off: the Euclidean distances of the box.
+  bool periodic_statistics = false;
   double max_memory_gib = 0.0;  // 0: 80% of the machine's memory
   // 0: every method takes the lattice's count (Sobol under the paper protocol: 2^round(log2 K^N)).
   // Otherwise the methods without a lattice (pds, sobol, random, halton, lhs) are asked for exactly
@@ -100,7 +104,16 @@ struct MethodResult {
   std::string notes;  // words only: the noise basis, the scrambling, why PDS stopped
 };
 
+// What a run keeps from one method for the next: CNJ's RMS displacement, which jitter-matched
+// reaches (jitter-matched runs CNJ itself, without keeping its points, when CNJ has not run yet).
+struct SamplingContext {
+  std::optional<double> cnj_rms_displacement;
+};
+
 // Fills result.points, result.notes and (for lattice methods) result.displacement for result.plan.
+void generate_points(const SampleConfig& config, MethodResult& result, SamplingContext& context,
+                     const StageProgress& progress = {});
+// The same with a context of its own.
 void generate_points(const SampleConfig& config, MethodResult& result, const StageProgress& progress = {});
 
 // One point set of `method` under `config` (config.methods is not consulted): validates, plans and

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "sampling/lattice.hpp"
 #include "sampling/point_set.hpp"
@@ -14,6 +15,26 @@ namespace dfvn {
 PointSet jittered_lattice(const LatticeSpec& lattice, std::uint64_t seed, int threads);
 // The same with any half-width h >= 0 (length units); the domain is [0,1]^N, points may leave it.
 PointSet jittered_lattice(const LatticeSpec& lattice, double half_width, std::uint64_t seed, int threads);
+
+// How jitter keeps a lattice in the unit cube when an offset reaches past a face: wrap (the torus
+// [0,1)^N, every coordinate taken modulo 1) or reflect (the cube [0,1]^N, folded back at the face as
+// a mirror would: the face then acts like a mirror plane of the jittered lattice).
+enum class JitterBoundary { wrap, reflect };
+
+// Jitter that moves a lattice exactly as far as another method did: lattice point i plus a v_i, with
+// v_i the offsets of jittered_lattice (uniform in [-1, 1]^N, the same draws for the same seed) and the
+// half-width a chosen so that the RMS displacement sqrt(mean_i |x_i - site_i|^2) equals `rms` (to
+// rounding). wrap: the displacement is a v_i (before wrapping), so a = rms / sqrt(mean |v_i|^2);
+// reflect: a reflected displacement is shorter, and a is found by bisection. Throws
+// std::invalid_argument for an rms that is not finite and positive, or that reflection in the unit
+// cube cannot reach.
+struct MatchedJitter {
+  PointSet points;
+  double half_width = 0.0;            // a, length units
+  std::vector<double> displacements;  // x_i - site_i (before wrapping), K^N x N row-major
+};
+MatchedJitter jitter_matching_rms(const LatticeSpec& lattice, double rms, JitterBoundary boundary, std::uint64_t seed,
+                                  int threads);
 
 // `count` points uniform in `domain`.
 PointSet uniform_random_points(int dimension, std::uint64_t count, const Box& domain, std::uint64_t seed, int threads);

@@ -15,18 +15,20 @@ namespace dfvn {
 Method parse_method(std::string_view name) {
   if (name == "cnj") return Method::cnj;
   if (name == "jitter") return Method::jitter;
+  if (name == "jitter-matched") return Method::jitter_matched;
   if (name == "pds") return Method::pds;
   if (name == "sobol") return Method::sobol;
   if (name == "random") return Method::random;
   if (name == "halton") return Method::halton;
   if (name == "lhs") return Method::lhs;
-  throw std::invalid_argument("unknown method " + quote_for_message(name) + " (allowed: cnj, jitter, pds, sobol, random, halton, lhs)");
+  throw std::invalid_argument("unknown method " + quote_for_message(name) + " (allowed: " + method_names() + ")");
 }
 
 std::string_view to_string(Method method) {
   switch (method) {
     case Method::cnj: return "cnj";
     case Method::jitter: return "jitter";
+    case Method::jitter_matched: return "jitter-matched";
     case Method::pds: return "pds";
     case Method::sobol: return "sobol";
     case Method::random: return "random";
@@ -34,6 +36,12 @@ std::string_view to_string(Method method) {
     case Method::lhs: return "lhs";
   }
   return "?";
+}
+
+std::string method_names() {
+  std::string names;
+  for (Method m : kAllMethods) names += (names.empty() ? "" : ", ") + std::string(to_string(m));
+  return names;
 }
 
 Protocol parse_protocol(std::string_view name) {

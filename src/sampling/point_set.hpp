@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/torus.hpp"
+
 namespace dfvn {
 
 // The cube [lo, lo + side]^N, or with `inscribed_ball` the ball inscribed in it (CNJ's --domain ball).
@@ -40,9 +42,13 @@ struct PointSet {
   const double* point(std::size_t i) const { return coordinates.data() + i * dimension; }
 };
 
-enum class Method { cnj, jitter, pds, sobol, random, halton, lhs };
+// jitter_matched: jitter whose RMS displacement equals CNJ's in the same run (sampling/jitter.hpp).
+enum class Method { cnj, jitter, jitter_matched, pds, sobol, random, halton, lhs };
+inline constexpr Method kAllMethods[] = {Method::cnj,   Method::jitter, Method::jitter_matched, Method::pds,
+                                         Method::sobol, Method::random, Method::halton,         Method::lhs};
 Method parse_method(std::string_view name);  // throws std::invalid_argument listing the names
 std::string_view to_string(Method method);
+std::string method_names();  // "cnj, jitter, jitter-matched, ..."
 
 // paper: Section 5.1 exactly as data/PROTOCOL.md establishes it. unit: every method in the unit
 // cube at the density of a cell-centred K^N lattice.

@@ -82,6 +82,7 @@ static SphereCnjResult sphere_curl_noise_jitter(int grid, const CnjOptions& requ
 CnjOptions sphere_cnj_options(const CnjOptions& options) {
   CnjOptions bound = options;
   bound.domain_mode = DomainMode::conformant;
+  bound.domain = CnjDomain::cube;  // not used on the sphere; the torus would ask for a periodic basis
   return bound;
 }
 

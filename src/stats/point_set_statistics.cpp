@@ -9,6 +9,7 @@
 
 #include "core/stopwatch.hpp"
 #include "io/csv.hpp"
+#include "stats/periodic_neighbours.hpp"
 
 namespace dfvn {
 
@@ -52,7 +53,9 @@ PointSetStatistics measure_point_set(const PointSet& points, const PointSetStati
   };
   report(0.0);
   out.nearest = summarize_nearest_neighbours(
-      nearest_neighbour_distances_any_dimension(points, options.knn, options.threads, report), points);
+      options.periodic ? periodic_nearest_neighbour_distances(points, options.threads, report)
+                       : nearest_neighbour_distances_any_dimension(points, options.knn, options.threads, report),
+      points);
   if (options.discrepancy) {
     for (std::size_t d = 0; d < std::size(kAllDiscrepancies); ++d) {
       const DiscrepancyKind kind = kAllDiscrepancies[d];

@@ -20,6 +20,7 @@ struct PointSetStatisticsOptions {
   bool discrepancy = false;  // O(n^2): only when asked
   KnnBackend knn = KnnBackend::nanoflann;
   int threads = 0;
+  bool periodic = false;  // minimum-image distances on the torus of the box (stats/periodic_neighbours.hpp)
 };
 
 struct PointSetStatistics {

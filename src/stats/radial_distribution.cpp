@@ -12,6 +12,8 @@
 #include "core/hash.hpp"
 #include "core/parallel.hpp"
 #include "stats/kd_tree.hpp"
+#include "stats/periodic_images.hpp"
+#include "stats/periodic_neighbours.hpp"
 
 namespace dfvn {
 
@@ -52,6 +54,14 @@ RdfCurve radial_distribution_impl(const PointSet& points, const RdfOptions& opti
   const double volume = points.domain.volume(N);
   RdfCurve curve;
   curve.r_max = options.r_max > 0.0 ? options.r_max : 2.5 * std::pow(volume / static_cast<double>(n), 1.0 / N);
+  if (options.periodic) {
+    // Below half the side, a pair has one minimum image within r_max: no pair is counted twice.
+    if (options.r_max >= 0.5 * side)
+      throw std::invalid_argument(fmt::format("a periodic RDF needs r_max below half the side ({:g}), got {:g}", 0.5 * side,
+                                              options.r_max));
+    if (curve.r_max >= 0.5 * side) curve.r_max = 0.499 * side;
+    check_in_periodic_box(points);
+  }
   if (curve.r_max >= side) curve.r_max = 0.999 * side;  // the edge correction needs |d_a| < L
   check_rdf_resolution(N, side, curve.r_max, options.bins);
 
@@ -88,18 +98,26 @@ RdfCurve radial_distribution_impl(const PointSet& points, const RdfOptions& opti
     for (std::int64_t k = b * kBlock; k < std::min(q, (b + 1) * kBlock); ++k) {
       const std::uint32_t i = queries[static_cast<std::size_t>(k)];
       const double* x = points.point(i);
-      matches.clear();
-      tree.radiusSearch(x, curve.r_max * curve.r_max, matches, nanoflann::SearchParams(32, 0.0f, false));
-      for (const auto& [j, dist2] : matches) {
-        if (j == i) continue;
-        const double r = std::sqrt(dist2);
-        const auto bin = static_cast<int>(r / bin_width);
-        if (bin >= bins) continue;
-        double overlap = 1.0;  // |W intersect (W + d)| for the cube of side L
-        const double* y = points.point(j);
-        for (int a = 0; a < N; ++a) overlap *= side - std::abs(x[a] - y[a]);
-        histogram[bin] += 1.0 / overlap;
-      }
+      // The pairs within r_max of x (or, on the torus, of one of its images): each pair once.
+      const auto count_pairs = [&](const double* position, bool image) {
+        matches.clear();
+        tree.radiusSearch(position, curve.r_max * curve.r_max, matches, nanoflann::SearchParams(32, 0.0f, false));
+        for (const auto& [j, dist2] : matches) {
+          if (j == i && !image) continue;
+          const double r = std::sqrt(dist2);
+          const auto bin = static_cast<int>(r / bin_width);
+          if (bin >= bins) continue;
+          double overlap = 1.0;  // |W intersect (W + d)| for the cube of side L; the torus has no edge
+          const double* y = points.point(j);
+          if (!options.periodic)
+            for (int a = 0; a < N; ++a) overlap *= side - std::abs(x[a] - y[a]);
+          histogram[bin] += 1.0 / overlap;
+        }
+      };
+      count_pairs(x, false);
+      if (options.periodic)
+        for_each_periodic_image<N>(x, points.domain.lo, side, [&] { return curve.r_max; },
+                                   [&](const double* image) { count_pairs(image, true); });
     }
   }
   curve.r.resize(bins);

@@ -15,6 +15,9 @@ struct RdfOptions {
   // Query points: all when the set is no larger, otherwise a seeded random subset of about this many
   // (each query still counts its pairs with every other point). 0: all points.
   std::uint64_t max_queries = 20000;
+  // The torus: minimum-image distances in the box (opposite faces identified), no edge correction;
+  // r_max must be below half the side (0: 2.5 mean spacings, capped at 0.499 side).
+  bool periodic = false;
 
   void validate() const;  // throws std::invalid_argument naming the option
 };
@@ -31,6 +34,8 @@ struct RdfCurve {
 // translation edge correction (Ohser and Stoyan 1981) for the cube of side L and volume V. For
 // uniform random points E[g(r)] = 1 at every r, edges and all. (The paper's script divides by
 // shell volume x n x n on a unit volume without correction, so its curves tend to 0.5 and sag.)
+// Periodic: the pairs at minimum-image distance, w_ij = 1 (the torus has no edge); every coordinate
+// must lie in the box.
 // Independent of thread count: per-block histograms are summed in block order. `progress`: query
 // points done over query points.
 RdfCurve radial_distribution(const PointSet& points, const RdfOptions& options, std::uint64_t seed, int threads,

@@ -49,7 +49,7 @@ awk 'BEGIN { for (i = 0; i < 20000; ++i) printf "%.6f,%.6f,%.6f,%.6f,%.6f\n", i*
 head -1 "$work/s.csv" | grep -q "^dim,grid,method,points,nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,median_displacement,frac_unmoved,neighbour_disorder,lattice_order,seconds_generate,seconds_stats,seed" &&
   ok || bad "stats header: $(head -1 "$work/s.csv")"
 # lattice methods fill the displacement columns, the others leave them empty
-awk -F, '$3 == "cnj" || $3 == "jitter" { if ($10 == "" || $14 == "") exit 1 } $3 == "pds" || $3 == "sobol" { if ($10 != "" || $14 != "") exit 1 }' "$work/s.csv" &&
+awk -F, '$3 == "cnj" || $3 == "jitter" || $3 == "jitter-matched" { if ($10 == "" || $14 == "") exit 1 } $3 == "pds" || $3 == "sobol" { if ($10 != "" || $14 != "") exit 1 }' "$work/s.csv" &&
   ok || bad "displacement columns: $(cat "$work/s.csv")"
 # field --diagnose: one CSV row, and --noise is checked
 "$bin" field --diagnose --dim 4 --noise turning-bands --diagnose-points 2000 >"$work/d.csv" 2>"$work/err" &&
@@ -57,7 +57,10 @@ awk -F, '$3 == "cnj" || $3 == "jitter" { if ($10 == "" || $14 == "") exit 1 } $3
 expect_error "unknown noise basis" "" "" field --dim 3 --noise perlin9
 "$bin" reproduce table1 --help 2>&1 | grep -q -- "--noise" && "$bin" sample --help 2>&1 | grep -q -- "--noise" && ok ||
   bad "--noise on reproduce table1 and sample"
-[[ $(wc -l <"$work/s.csv") -eq 5 ]] && ok || bad "stats rows (cnj, jitter, pds, sobol)"
+[[ $(wc -l <"$work/s.csv") -eq 6 ]] && ok || bad "stats rows (cnj, jitter-matched, jitter, pds, sobol)"
+# jitter-matched moves exactly as far as CNJ (column 10: rms_displacement).
+awk -F, '$3 == "cnj" { c = $10 } $3 == "jitter-matched" { j = $10 } END { exit !(c != "" && c == j) }' "$work/s.csv" &&
+  ok || bad "jitter-matched RMS displacement: $(cut -d, -f3,10 "$work/s.csv")"
 "$bin" sample --help >"$work/out" 2>&1 && grep -q -- "--step-scale" "$work/out" && grep -q -- "--protocol" "$work/out" && ok || bad "sample --help"
 expect_error "sample dim" "" "" --dim 9 --grid 4
 expect_error "sample grid" "" "" --dim 3 --grid 1
@@ -95,19 +98,42 @@ assert np.array_equal(a, b)
 PY
 fi
 
-# CNJ in a domain (Eq. 13) and on the sphere
-"$bin" --dim 4 --grid 6 --methods cnj --quiet --stats "$work/dom.csv" 2>"$work/err" && ok || bad "conformant run: $(cat "$work/err")"
+# CNJ on the torus (the default), in a domain (Eq. 13 or the ramp) and on the sphere
+"$bin" --dim 4 --grid 6 --methods cnj --quiet --stats "$work/torus.csv" 2>"$work/err" && ok || bad "torus run: $(cat "$work/err")"
 # Columns: 4 points, 24 dropped, 31 notes.
-awk -F, '$3 == "cnj" && $4 == 1296 && $24 == "0" && /cube domain; conformant/ { found = 1 } END { exit !found }' "$work/dom.csv" &&
-  ok || bad "conformant CNJ keeps all 6^4 points: $(tail -1 "$work/dom.csv")"
-"$bin" --dim 4 --grid 6 --methods cnj --domain-mode drop --quiet --stats "$work/drop.csv" && ok || bad "drop run"
+awk -F, '$3 == "cnj" && $4 == 1296 && $24 == "0" && /torus domain; conformant/ { found = 1 } END { exit !found }' "$work/torus.csv" &&
+  ok || bad "torus CNJ keeps all 6^4 points: $(tail -1 "$work/torus.csv")"
+for bound in eq13 ramp; do
+  "$bin" --dim 4 --grid 6 --methods cnj --domain cube --bound $bound --quiet --stats "$work/dom.csv" 2>"$work/err" &&
+    ok || bad "conformant run: $(cat "$work/err")"
+  awk -F, '$3 == "cnj" && $4 == 1296 && $24 == "0" && /cube domain; conformant/ { found = 1 } END { exit !found }' "$work/dom.csv" &&
+    ok || bad "conformant CNJ ($bound) keeps all 6^4 points: $(tail -1 "$work/dom.csv")"
+done
+"$bin" --dim 4 --grid 6 --methods cnj --domain cube --domain-mode drop --quiet --stats "$work/drop.csv" && ok || bad "drop run"
 grep -q "cube domain; drop" "$work/drop.csv" && ok || bad "drop mode named in the notes"
 "$bin" --dim 3 --grid 8 --methods cnj --domain ball --protocol unit --quiet --stats "$work/ball.csv" && ok || bad "ball run"
 awk -F, '$1 == 3 && $2 == 8 && $3 == "cnj" && $24 == "0" && /ball domain; conformant/ { found = 1 } END { exit !found }' "$work/ball.csv" &&
   ok || bad "ball: $(tail -1 "$work/ball.csv")"
 "$bin" --dim 4 --grid 6 --on sphere --quiet --stats "$work/sphere.csv" && ok || bad "sphere run"
 [[ $(grep -c "on the sphere; geodesic distances" "$work/sphere.csv") -eq 2 ]] && ok || bad "sphere: cnj and random rows: $(cat "$work/sphere.csv")"
-expect_error "sample domain" "" "" --dim 3 --grid 4 --domain torus
+expect_error "sample domain" "" "" --dim 3 --grid 4 --domain klein
+expect_error "torus drop" "" "torus has no boundary" --dim 3 --grid 4 --domain torus --domain-mode drop
+expect_error "torus bound" "" "--bound applies to conformant CNJ" --dim 3 --grid 4 --domain torus --bound ramp
+# Without --domain, options that need a boundary put CNJ in the cube.
+"$bin" --dim 3 --grid 4 --methods cnj --domain-mode drop -q | grep -q "cube domain; drop" &&
+  "$bin" --dim 3 --grid 4 --methods cnj --bound ramp -q | grep -q "cube domain; conformant" && ok ||
+  bad "--domain-mode drop or --bound without --domain: the cube"
+expect_error "drop boundary width" "" "--boundary-width applies" --dim 3 --grid 4 --domain cube --domain-mode drop --boundary-width 1
+expect_error "torus simplex" "" "periodic noise basis" --dim 3 --grid 4 --noise simplex
+expect_error "jitter-matched ball" "" "jitter-matched" --dim 3 --grid 4 --domain ball --methods cnj,jitter-matched
+expect_error "field bound without a boundary" "" "--bound applies to --domain cube or ball" field --dim 3 --bound ramp
+expect_error "field diagnose cube" "" "--diagnose measures" field --diagnose --domain cube
+# stats --periodic: minimum-image distances; two points across a face are neighbours.
+printf '0.01,0.5\n0.98,0.5\n0.5,0.1\n' >"$work/across.csv"
+"$bin" stats --input "$work/across.csv" --periodic --no-timing -o "$work/across.stats" && awk -F, 'NR == 2 { exit !($5 + 0 > 0.0299 && $5 + 0 < 0.0301) }' "$work/across.stats" &&
+  ok || bad "stats --periodic: $(cat "$work/across.stats")"
+"$bin" field --diagnose --domain torus --dim 3 --diagnose-points 2000 >"$work/td.csv" && grep -q ",torus$" "$work/td.csv" &&
+  ok || bad "field --diagnose --domain torus: $(cat "$work/td.csv")"
 expect_error "sample domain mode" "" "" --dim 3 --grid 4 --domain-mode keep
 expect_error "sphere in 2D" "" "" --dim 2 --grid 4 --on sphere
 expect_message "sphere in 2D" "needs --dim 3..8"

@@ -59,8 +59,9 @@ import csv, sys
 rows = {r["method"]: r for r in csv.DictReader(open(sys.argv[1]))}
 cnj, pds = rows["cnj"], rows["pds"]
 assert cnj["frequency"] == "0.5", cnj["frequency"]
-assert abs(float(cnj["field_frequency"]) - 0.5 / (0.9 / 5)) < 1e-6, cnj["field_frequency"]
-assert cnj["notes"] == "turning-bands noise; cube domain; conformant", cnj["notes"]
+# On the torus: the cell-centred lattice (spacing 1/6), and the frequency its periodic field realises.
+assert abs(float(cnj["field_frequency"]) / (0.5 * 6) - 1) < 0.1, cnj["field_frequency"]
+assert cnj["notes"] == "turning-bands noise; torus domain; conformant", cnj["notes"]
 assert cnj["dropped"].isdigit() and cnj["skipped_updates"].isdigit() and float(cnj["trace_time"]) > 0
 assert pds["frequency"] == "" and pds["dropped"] == "" and pds["saturated"] in ("0", "1") and pds["radius"] == "0.1"
 assert pds["rms_displacement"] == "" and cnj["rms_displacement"] != ""
@@ -100,11 +101,13 @@ assert results["cnj"]["generation"]["dropped"] == int(rows["cnj"]["dropped"])
 assert results["pds"]["generation"]["saturated"] in (True, False)
 assert "summary" not in run
 PY
-# The JSON names the step count CNJ traced with: 0 resolves by domain mode, and the sphere traces as conformant.
+# The JSON names the step count CNJ traced with: 0 resolves by domain (2 on the torus and in drop mode's free
+# field, 1 in the bounded cube), and the sphere traces as conformant.
 json_steps() { "$bin" -q --methods cnj --json - -o /dev/null "$@" | $python -c 'import json, sys; print(json.load(sys.stdin)["parameters"]["cnj"]["steps"])'; }
-[ "$(json_steps -d 3 --grid 4)" = 1 ] && [ "$(json_steps -d 3 --grid 4 --domain-mode drop)" = 2 ] &&
-  [ "$(json_steps -d 3 --grid 4 --domain-mode drop --steps 3)" = 3 ] &&
-  [ "$(json_steps -d 3 --grid 4 --on sphere --domain-mode drop)" = 1 ] &&
+[ "$(json_steps -d 3 --grid 4)" = 2 ] && [ "$(json_steps -d 3 --grid 4 --domain cube)" = 1 ] &&
+  [ "$(json_steps -d 3 --grid 4 --domain cube --domain-mode drop)" = 2 ] &&
+  [ "$(json_steps -d 3 --grid 4 --domain cube --domain-mode drop --steps 3)" = 3 ] &&
+  [ "$(json_steps -d 3 --grid 4 --on sphere --domain cube --domain-mode drop)" = 1 ] &&
   ok || bad "json steps: the resolved step count"
 "$bin" -d 2 --grid 5 -q --methods jitter --realizations 3 --json "$work/real.json" -o /dev/null &&
   $python -c 'import json, sys; s = json.load(open(sys.argv[1]))["summary"]["jitter"]; assert s["nearest_neighbour.median"]["sd"] > 0, s' "$work/real.json" &&

@@ -22,14 +22,16 @@ std::array<Vec<N>, N - 1> random_rows(std::uint64_t index) {
   return rows;
 }
 
-// Against an independent minimum-norm solution: Eigen's complete orthogonal decomposition, v = J^+ r.
+// Against an independent minimum-norm solution: Eigen's complete orthogonal decomposition, v = J^+ r. The
+// reference uses dynamic-size matrices: one instantiation of the decomposition serves every dimension (seven
+// fixed-size ones made this file the slowest of the build to compile).
 TYPED_TEST(MinNormStep, EqualsThePseudoInverseSolution) {
   constexpr int N = TypeParam::value;
   for (std::uint64_t k = 0; k < 200; ++k) {
     const auto rows = random_rows<N>(k);
     std::array<double, N - 1> r;
-    Eigen::Matrix<double, N - 1, N> jacobian;
-    Eigen::Matrix<double, N - 1, 1> rhs;
+    Eigen::MatrixXd jacobian(N - 1, N);
+    Eigen::VectorXd rhs(N - 1);
     for (int i = 0; i < N - 1; ++i) {
       r[i] = testing::random_point<2>(kSeed + 1, k * 16 + i, -1.0, 1.0)[0];
       jacobian.row(i) = rows[i].transpose();
@@ -37,7 +39,7 @@ TYPED_TEST(MinNormStep, EqualsThePseudoInverseSolution) {
     }
     Vec<N> step;
     ASSERT_TRUE(min_norm_step<N>(rows, r, 1e8, step));
-    const Vec<N> expected = jacobian.completeOrthogonalDecomposition().solve(rhs);
+    const Eigen::VectorXd expected = jacobian.completeOrthogonalDecomposition().solve(rhs);
     EXPECT_LT((step - expected).norm(), 1e-10 * (1.0 + expected.norm())) << "N = " << N << ", case " << k;
     // It solves the system and is orthogonal to the null space (it lies in the row space).
     EXPECT_LT((jacobian * step - rhs).norm(), 1e-10 * (1.0 + rhs.norm()));

@@ -121,3 +121,31 @@ def test_trace_refuses_bad_options():
         dfvn.trace(points, 0.1, integrator="midpoint")
     with pytest.raises(ValueError, match="finite"):
         dfvn.trace(points, float("inf"))
+
+
+@pytest.mark.parametrize("domain, extra", [("torus", []), ("cube", ["--bound", "ramp", "--boundary-width", 0.15]),
+                                           ("ball", [])])
+def test_field_domains_equal_the_cli(cli, tmp_path, domain, extra):
+    points = np.random.default_rng(7).random((100, 3))
+    path = tmp_path / "points.csv"
+    np.savetxt(path, points, delimiter=",", fmt="%.17g")
+    out = cli("field", "--dim", 3, "--seed", 4, "--frequency", 1.5, "--domain", domain, *extra, "--input", path)
+    table = np.loadtxt(out.splitlines()[1:], delimiter=",", ndmin=2)
+    options = {"bound": "ramp", "boundary_width": 0.15} if extra else {}
+    c, f = dfvn.field(points, seed=4, frequency=1.5, domain=domain, **options)
+    np.testing.assert_array_equal(table[:, 3:6], c)
+    np.testing.assert_array_equal(table[:, 6:], f)
+
+
+def test_trace_on_the_torus_wraps_and_in_the_cube_stays_inside():
+    points = np.random.default_rng(9).random((300, 4))
+    ends = dfvn.trace(points, 0.4, frequency=1.2, domain="torus", steps=2)
+    assert ends.min() >= 0.0 and ends.max() < 1.0
+    free = dfvn.trace(points + 1.0, 0.4, frequency=1.2, domain="torus", steps=2)
+    np.testing.assert_allclose(free, ends, atol=1e-10)  # period 1: the shifted starts end at the same points
+    inside = dfvn.trace(points, 0.4, frequency=1.2, domain="cube", bound="ramp", boundary_width=0.05)
+    assert inside.min() >= 0.0 and inside.max() <= 1.0
+    with pytest.raises(ValueError, match="bound and boundary_width apply"):
+        dfvn.trace(points, 0.4, domain="torus", bound="ramp")
+    with pytest.raises(ValueError, match="periodic noise basis"):
+        dfvn.field(points, domain="torus", noise="simplex")

@@ -6,7 +6,7 @@ import pytest
 
 import dfvn
 
-METHODS = ["cnj", "jitter", "pds", "sobol", "random", "halton", "lhs"]
+METHODS = ["cnj", "jitter", "jitter-matched", "pds", "sobol", "random", "halton", "lhs"]
 
 
 @pytest.mark.parametrize("protocol", ["unit", "paper"])
@@ -24,10 +24,11 @@ def test_sample_options_reach_the_generator_as_on_the_command_line(cli, tmp_path
     cli("--dim", 4, "--grid", 4, "--seed", 8, "--protocol", "unit", "--methods", "cnj,sobol,halton,pds",
         "--scramble", "none", "--noise", "quintic-gradient", "--frequency", 0.35, "--step-scale", 0.3,
         "--integrator", "euler", "--reproject", "newton", "--steps", 3, "--pds-radius", 0.2, "--pds-candidates", 10,
+        "--domain", "ball", "--bound", "ramp",
         "--points", tmp_path, "--format", "npy", "--stats", tmp_path / "stats.csv", "--quiet")
     common = dict(grid=4, seed=8, scramble=False)
     cnj = dfvn.sample("cnj", 4, noise="quintic-gradient", frequency=0.35, step_scale=0.3, integrator="euler",
-                      reprojection="newton", steps=3, **common)
+                      reprojection="newton", steps=3, domain="ball", bound="ramp", **common)
     np.testing.assert_array_equal(cnj, np.load(tmp_path / "cnj.npy"))
     np.testing.assert_array_equal(dfvn.sample("sobol", 4, **common), np.load(tmp_path / "sobol.npy"))
     np.testing.assert_array_equal(dfvn.sample("halton", 4, **common), np.load(tmp_path / "halton.npy"))
@@ -58,7 +59,8 @@ def test_lattice_methods_take_the_lattice_nearest_to_n():
     assert dfvn.sample("jitter", 3, n=40).shape == (27, 3)       # 3^3 = 27 is nearer than 4^3 = 64
     assert dfvn.sample("jitter", 3, n=50).shape == (64, 3)
     assert dfvn.sample("jitter", 2, n=1).shape == (4, 2)         # the smallest lattice, 2^2
-    assert dfvn.sample("cnj", 3, n=1000).shape[0] <= 1000        # CNJ drops points that leave the cube
+    assert dfvn.sample("cnj", 3, n=1000).shape == (1000, 3)      # the torus keeps every point
+    assert dfvn.sample("cnj", 3, n=1000, domain_mode="drop").shape[0] <= 1000  # drop mode drops, in the cube
 
 
 def test_poisson_disk_gives_n_points_or_warns_that_it_saturated():
@@ -71,11 +73,22 @@ def test_poisson_disk_gives_n_points_or_warns_that_it_saturated():
     assert distance.min() >= 0.2
 
 
-def test_cnj_steps_zero_is_the_conformant_count_of_one():
-    one = dfvn.sample("cnj", 3, grid=5, steps=1)
-    np.testing.assert_array_equal(dfvn.sample("cnj", 3, grid=5, steps=0), one)
-    np.testing.assert_array_equal(dfvn.sample("cnj", 3, grid=5), one)
-    assert not np.array_equal(dfvn.sample("cnj", 3, grid=5, steps=2), one)
+def test_cnj_steps_zero_is_the_domains_count():
+    two = dfvn.sample("cnj", 3, grid=5, steps=2)  # the torus: the free field's two steps
+    np.testing.assert_array_equal(dfvn.sample("cnj", 3, grid=5, steps=0), two)
+    np.testing.assert_array_equal(dfvn.sample("cnj", 3, grid=5), two)
+    one = dfvn.sample("cnj", 3, grid=5, steps=1, domain="cube")  # the bounded cube: one step
+    np.testing.assert_array_equal(dfvn.sample("cnj", 3, grid=5, domain="cube"), one)
+    assert not np.array_equal(two, dfvn.sample("cnj", 3, grid=5, steps=1))
+
+
+def test_cnj_on_the_torus_stays_in_the_half_open_cube_and_jitter_matched_moves_as_far():
+    cnj = dfvn.sample("cnj", 4, grid=5, seed=3)
+    assert cnj.shape == (625, 4) and cnj.min() >= 0.0 and cnj.max() < 1.0
+    matched = dfvn.sample("jitter-matched", 4, grid=5, seed=3)
+    assert matched.shape == (625, 4) and matched.min() >= 0.0 and matched.max() < 1.0
+    periodic = dfvn.nn_stats(cnj, periodic=True)
+    assert periodic["min"] <= dfvn.nn_stats(cnj)["min"]  # minimum images are never farther
 
 
 def test_same_seed_same_bits_other_seed_other_points_any_threads():
@@ -96,6 +109,12 @@ def test_same_seed_same_bits_other_seed_other_points_any_threads():
         (("sobol", 3), {"grid": 4, "protocol": "box"}, ValueError, "box"),
         (("cnj", 3), {"grid": 4, "noise": "perlin"}, ValueError, "perlin"),
         (("cnj", 3), {"grid": 4, "steps": -1}, ValueError, "steps"),
+        (("cnj", 3), {"grid": 4, "domain": "klein"}, ValueError, "klein"),
+        (("cnj", 3), {"grid": 4, "domain": "torus", "domain_mode": "drop"}, ValueError, "torus has no boundary"),
+        (("cnj", 3), {"grid": 4, "domain": "torus", "bound": "ramp"}, ValueError, "bound applies"),
+        (("cnj", 3), {"grid": 4, "noise": "simplex"}, ValueError, "periodic noise basis"),
+        (("cnj", 3), {"grid": 4, "bound": "mirror"}, ValueError, "mirror"),
+        (("jitter-matched", 3), {"grid": 4, "domain": "ball"}, ValueError, "jitter-matched"),
         (("sobol", 3), {"grid": 4, "colour": "red"}, TypeError, "colour|argument"),
         (("sobol", 3), {"n": -5}, TypeError, ""),
     ],

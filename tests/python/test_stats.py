@@ -40,6 +40,26 @@ def test_nn_stats_agree_with_brute_force_for_both_kd_trees():
         assert stats["q01"] == pytest.approx(np.quantile(nearest, 0.01), rel=1e-14)
 
 
+def test_periodic_nn_stats_equal_scipys_periodic_kd_tree():
+    from scipy.spatial import cKDTree  # an independent implementation of minimum-image distances
+
+    for dim in (1, 2, 5):
+        points = np.random.default_rng(dim).random((3000, dim))
+        nearest = cKDTree(points, boxsize=1.0).query(points, k=2)[0][:, 1]
+        stats = dfvn.nn_stats(points, periodic=True)
+        assert stats["min"] == pytest.approx(nearest.min(), rel=1e-14)
+        assert stats["median"] == pytest.approx(np.median(nearest), rel=1e-14)
+        assert stats["q01"] == pytest.approx(np.quantile(nearest, 0.01), rel=1e-14)
+
+
+def test_periodic_rdf_of_uniform_random_points_is_about_one():
+    points = np.random.default_rng(2).random((20000, 2))
+    r, g = dfvn.rdf(points, bins=20, r_max=0.05, periodic=True)
+    assert np.all(np.abs(g[5:] - 1.0) < 0.15)
+    with pytest.raises(ValueError, match="half the side"):
+        dfvn.rdf(points, r_max=0.5, periodic=True)
+
+
 def test_rdf_equals_the_cli_rdf(cli, tmp_path):
     cli("--dim", 3, "--grid", 8, "--seed", 6, "--protocol", "unit", "--methods", "jitter,sobol",
         "--rdf", tmp_path / "rdf.csv", "--stats", tmp_path / "stats.csv", "--quiet")

@@ -16,6 +16,7 @@ namespace {
 // The study traces the free field, whose default step count is the drop mode's.
 int free_field_steps() {
   CnjOptions options;
+  options.domain = CnjDomain::cube;
   options.domain_mode = DomainMode::drop;
   return cnj_steps(options);
 }

@@ -201,9 +201,11 @@ TEST(Experiment, StatsColumnsAreNumbersOrEmpty) {
   const std::vector<std::string> sobol = split_row(stats_csv_row(c, results[2], false));
   ASSERT_EQ(cnj.size(), header.size());
   EXPECT_EQ(cnj[column("frequency")], "0.5");  // as given, in cycles per lattice spacing
-  EXPECT_EQ(cnj[column("field_frequency")], format_real(0.5 / c.lattice().spacing()));
+  // On the torus (the default) the lattice is cell-centred (spacing 1/6 here) and the field frequency the one
+  // the periodic basis realises: near 0.5 / spacing = 3 cycles per unit length.
+  EXPECT_NEAR(std::stod(cnj[column("field_frequency")]), 0.5 * 6.0, 0.3);
   EXPECT_FALSE(cnj[column("dropped")].empty());
-  EXPECT_EQ(cnj[column("notes")], "\"turning-bands noise; cube domain; conformant\"");
+  EXPECT_EQ(cnj[column("notes")], "\"turning-bands noise; torus domain; conformant\"");
   EXPECT_FALSE(cnj[column("retraced")].empty());
   EXPECT_FALSE(cnj[column("kept_at_site")].empty());
   EXPECT_EQ(cnj[column("seconds_generate")], "");

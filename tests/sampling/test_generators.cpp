@@ -77,15 +77,18 @@ TEST(CurlNoiseJitter, MovesPointsByAboutTheTraceTime) {
   EXPECT_LT(r.rms_displacement, 3.0 * r.trace_time);
 }
 
-// CnjOptions's steps default to the domain mode's count: 1 in the bounded field, kDropModeSteps in the
-// free one. An explicit count is kept; a negative one is refused.
+// CnjOptions's steps default to the domain's count: 1 in the bounded field, kFreeFieldSteps in the
+// free one (drop mode, and the torus, the default). An explicit count is kept; a negative one is refused.
 TEST(CurlNoiseJitter, StepsDefaultToTheDomainModesCount) {
   CnjOptions o;
+  EXPECT_EQ(o.domain, CnjDomain::torus);
   EXPECT_EQ(o.trace.steps, CnjOptions::kStepsByDomainMode);
+  EXPECT_EQ(cnj_steps(o), kFreeFieldSteps);
+  o.domain = CnjDomain::cube;
   EXPECT_EQ(cnj_steps(o), 1);
   o.domain_mode = DomainMode::drop;
-  EXPECT_EQ(cnj_steps(o), kDropModeSteps);
-  EXPECT_EQ(cnj_trace_options(o).steps, kDropModeSteps);
+  EXPECT_EQ(cnj_steps(o), kFreeFieldSteps);
+  EXPECT_EQ(cnj_trace_options(o).steps, kFreeFieldSteps);
   o.trace.steps = 3;
   EXPECT_EQ(cnj_steps(o), 3);
   o.domain_mode = DomainMode::conformant;
@@ -100,39 +103,43 @@ TEST(CurlNoiseJitter, StepsDefaultToTheDomainModesCount) {
   EXPECT_THROW(o.validate(), std::invalid_argument);
 }
 
-// The default in conformant mode is the one-step trace, bit for bit.
+// The default in the bounded cube is the one-step trace, bit for bit.
 TEST(CurlNoiseJitter, ConformantDefaultIsOneStep) {
   const LatticeSpec l{4, 5, Protocol::paper};
-  CnjOptions one;
+  CnjOptions bounded;
+  bounded.domain = CnjDomain::cube;
+  CnjOptions one = bounded;
   one.trace.steps = 1;
-  EXPECT_EQ(curl_noise_jitter(l, CnjOptions{}, 3, 2).points.coordinates, curl_noise_jitter(l, one, 3, 2).points.coordinates);
+  EXPECT_EQ(curl_noise_jitter(l, bounded, 3, 2).points.coordinates, curl_noise_jitter(l, one, 3, 2).points.coordinates);
 }
 
-// The default in drop mode is the trace with kDropModeSteps steps, bit for bit, and not the one-step trace.
+// The default in drop mode is the trace with kFreeFieldSteps steps, bit for bit, and not the one-step trace.
 TEST(CurlNoiseJitter, DropModeDefaultIsItsStepCount) {
   const LatticeSpec l{5, 4, Protocol::paper};
   CnjOptions automatic;
+  automatic.domain = CnjDomain::cube;
   automatic.domain_mode = DomainMode::drop;
   CnjOptions chosen = automatic, one = automatic;
-  chosen.trace.steps = kDropModeSteps;
+  chosen.trace.steps = kFreeFieldSteps;
   one.trace.steps = 1;
   const CnjResult a = curl_noise_jitter(l, automatic, 3, 2);
   EXPECT_EQ(a.displacements, curl_noise_jitter(l, chosen, 3, 2).displacements);
   EXPECT_NE(a.displacements, curl_noise_jitter(l, one, 3, 2).displacements);
 }
 
-// Why the free field takes kDropModeSteps: in 7D, at the default frequency and trace time, one RK4 step
+// Why the free field takes kFreeFieldSteps: in 7D, at the default frequency and trace time, one RK4 step
 // lands far from the flow's end point (a trace of 16 steps); two land close to it. Measured, seed 1:
 // RMS distance to the flow's end 0.25 spacings with one step, 0.065 with two.
 TEST(CurlNoiseJitter, DropModeStepsFollowTheFlow) {
   const LatticeSpec l{7, 3, Protocol::paper};  // 2187 sites
   auto displacements = [&](int steps) {
     CnjOptions o;
+    o.domain = CnjDomain::cube;
     o.domain_mode = DomainMode::drop;
     o.trace.steps = steps;
     return curl_noise_jitter(l, o, 1, 2).displacements;
   };
-  const std::vector<double> flow = displacements(16), one = displacements(1), two = displacements(kDropModeSteps);
+  const std::vector<double> flow = displacements(16), one = displacements(1), two = displacements(kFreeFieldSteps);
   auto rms_distance = [&](const std::vector<double>& d) {
     double sum = 0.0;
     for (std::size_t i = 0; i < d.size(); ++i) sum += (d[i] - flow[i]) * (d[i] - flow[i]);

@@ -1,0 +1,33 @@
+// Nearest-neighbour distances on the torus: the points' box [lo, lo + side)^N with opposite faces
+// identified, measured with minimum-image distances (as UTK measures its periodic samplers, and as a
+// point set made on the torus should be measured).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "core/progress.hpp"
+#include "sampling/point_set.hpp"
+
+namespace dfvn {
+
+// The minimum-image distance between points i and j: sqrt(sum_a m(x_ia - x_ja)^2) with
+// m(d) = d - side round(d / side), summed over axes in order.
+double periodic_distance_between(const PointSet& points, std::size_t i, std::size_t j);
+
+// For every point, the minimum-image distance to its nearest other point: the smallest of
+// periodic_distance_between over j != i. Every coordinate must lie in [lo, lo + side] (throws
+// std::invalid_argument naming the first that does not); needs at least 2 points. 1D by sorting,
+// 2D-8D by an exact KD-tree queried at the point and at each of its images x + side s,
+// s in {-1, 0, 1}^N, that lies closer to the box than the nearest distance found so far. Independent
+// of the thread count. `progress`: points done over points.
+std::vector<double> periodic_nearest_neighbour_distances(const PointSet& points, int threads,
+                                                         const FractionProgress& progress = {});
+
+// Brute force, O(n^2): the reference the KD-tree version is tested against.
+std::vector<double> periodic_nearest_neighbour_distances_brute_force(const PointSet& points);
+
+// Throws std::invalid_argument unless every coordinate lies in [lo, lo + side].
+void check_in_periodic_box(const PointSet& points);
+
+}  // namespace dfvn

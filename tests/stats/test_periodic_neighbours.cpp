@@ -1,0 +1,95 @@
+// Minimum-image statistics on the torus (stats/periodic_neighbours.hpp, RdfOptions::periodic).
+#include "stats/periodic_neighbours.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "sampling/jitter.hpp"
+#include "stats/nearest_neighbour.hpp"
+#include "stats/radial_distribution.hpp"
+
+namespace dfvn {
+namespace {
+
+// The KD-tree with its images equals the brute force to the last bit, 1D-8D, in boxes that do not start
+// at 0, with duplicates and with points on both faces of an axis (the same point of the torus).
+TEST(PeriodicNeighbours, KdTreeEqualsBruteForce) {
+  for (int dimension = 1; dimension <= 8; ++dimension) {
+    const Box box{-2.0, 3.0};
+    PointSet p = uniform_random_points(dimension, dimension == 1 ? 300 : 2500, box, 40 + dimension, 2);
+    for (int k = 0; k < 3; ++k) p.coordinates.insert(p.coordinates.end(), p.point(k * 5), p.point(k * 5) + dimension);
+    std::vector<double> on_face(dimension, 0.5), opposite(dimension, 0.5);
+    on_face[0] = box.lo;
+    opposite[0] = box.lo + box.side;
+    p.coordinates.insert(p.coordinates.end(), on_face.begin(), on_face.end());
+    p.coordinates.insert(p.coordinates.end(), opposite.begin(), opposite.end());
+    const auto brute = periodic_nearest_neighbour_distances_brute_force(p);
+    const auto tree = periodic_nearest_neighbour_distances(p, 2);
+    ASSERT_EQ(tree.size(), brute.size());
+    for (std::size_t i = 0; i < brute.size(); ++i) EXPECT_EQ(tree[i], brute[i]) << dimension << "D point " << i;
+    EXPECT_EQ(tree[0], 0.0);             // a duplicate
+    EXPECT_EQ(tree[p.size() - 1], 0.0);  // the two faces meet
+  }
+}
+
+// Two points near opposite faces are neighbours across them; the Euclidean distance does not see it.
+TEST(PeriodicNeighbours, NeighboursAcrossTheFaces) {
+  PointSet p{2, {0.01, 0.5, 0.98, 0.5, 0.5, 0.1}, Box{0.0, 1.0}};
+  const auto d = periodic_nearest_neighbour_distances(p, 1);
+  EXPECT_NEAR(d[0], 0.03, 1e-12);
+  EXPECT_NEAR(d[1], 0.03, 1e-12);
+  EXPECT_NEAR(nearest_neighbour_distances(p, KnnBackend::nanoflann, 1)[0], std::hypot(0.49, 0.4), 1e-12);
+}
+
+// A cell-centred lattice is perfectly periodic: every minimum-image distance is the spacing.
+TEST(PeriodicNeighbours, LatticeOnTheTorus) {
+  const LatticeSpec l{4, 5, Protocol::unit};
+  PointSet p{4, std::vector<double>(4 * 625), Box{0.0, 1.0}};
+  for (std::uint64_t i = 0; i < 625; ++i) l.point(i, p.coordinates.data() + 4 * i);
+  for (double d : periodic_nearest_neighbour_distances(p, 2)) EXPECT_NEAR(d, 0.2, 1e-12);
+}
+
+TEST(PeriodicNeighbours, IndependentOfThreadsAndRefusesPointsOutsideTheBox) {
+  const PointSet p = uniform_random_points(6, 20000, Box{0.0, 1.0}, 8, 2);
+  EXPECT_EQ(periodic_nearest_neighbour_distances(p, 1), periodic_nearest_neighbour_distances(p, 2));
+  PointSet outside{2, {0.5, 0.5, 1.5, 0.2}, Box{0.0, 1.0}};
+  EXPECT_THROW(periodic_nearest_neighbour_distances(outside, 1), std::invalid_argument);
+  PointSet one{2, {0.5, 0.5}, Box{0.0, 1.0}};
+  EXPECT_THROW(periodic_nearest_neighbour_distances(one, 1), std::invalid_argument);
+}
+
+// On the torus uniform random points give g(r) = 1 without any edge correction; each bin is compared
+// with its Poisson standard error (every pair counted twice).
+TEST(PeriodicRdf, UniformRandomPointsGiveOne) {
+  for (int dimension : {2, 4, 6}) {
+    const PointSet p = uniform_random_points(dimension, 20000, Box{0.0, 1.0}, 3 + dimension, 2);
+    RdfOptions o;
+    o.periodic = true;
+    o.bins = 10;
+    o.max_queries = 3000;
+    o.r_max = dimension == 2 ? 0.05 : (dimension == 4 ? 0.2 : 0.3);
+    const RdfCurve c = radial_distribution(p, o, 1, 2);
+    const double volume = 1.0;
+    for (std::size_t k = 0; k < c.g.size(); ++k) {
+      const double lo = k * o.r_max / o.bins, hi = (k + 1) * o.r_max / o.bins;
+      const double shell = unit_ball_volume(dimension) * (std::pow(hi, dimension) - std::pow(lo, dimension));
+      const double expected_pairs = static_cast<double>(c.queries) * (p.size() - 1) * shell / volume;
+      const double standard_error = std::sqrt(2.0 / expected_pairs);
+      EXPECT_NEAR(c.g[k], 1.0, 5.0 * standard_error + 1e-3) << dimension << "D bin " << k;
+    }
+  }
+}
+
+TEST(PeriodicRdf, RefusesReachesOfHalfTheSide) {
+  const PointSet p = uniform_random_points(3, 500, Box{0.0, 1.0}, 5, 1);
+  RdfOptions o;
+  o.periodic = true;
+  o.r_max = 0.5;
+  EXPECT_THROW(radial_distribution(p, o, 1, 1), std::invalid_argument);
+  o.r_max = 0.0;  // the default reach is capped below half the side
+  EXPECT_LT(radial_distribution(p, o, 1, 1).r_max, 0.5);
+}
+
+}  // namespace
+}  // namespace dfvn
