@@ -456,13 +456,16 @@ bool use_dense_grid(const PoissonDiskOptions& options, std::uint64_t max_points)
 // ---------------------------------------------------------------------------------------------------
 // The queue, and its entries' candidates thrown ahead by helper threads.
 
-// A queued visit: the point, how many visits it had before, and its coordinates (so that helper
-// threads never read the output, which the committing thread appends to).
+// A placed point, kept where helper threads can read it while more are placed.
 template <int N>
+struct Point {
+  double x[N];
+};
+
+// A queued visit: the point and how many visits it had before.
 struct Entry {
   std::uint32_t point;
   std::uint32_t visit;
-  double x[N];
 };
 
 // Entries per block, the unit a helper thread claims, and blocks a helper may run ahead of the
@@ -498,11 +501,11 @@ class QueueProcess {
         normal_(NormalZiggurat::instance()),
         grid_(options.domain, options.radius, use_dense_grid<N>(options, max_points), max_points),
         ticker_(progress, max_points),
-        coordinates_(points.coordinates),
+        output_(points.coordinates),
         blocks_(new Block<N>[kBlocksAhead]) {}
 
-  // Runs the queue to its end with `threads` threads; returns candidates thrown, and whether it
-  // stopped at max_points.
+  // Runs the queue to its end with `threads` threads, then writes the points to the output; returns
+  // candidates thrown, and whether it stopped at max_points.
   std::pair<std::uint64_t, bool> run(int threads) {
     place_first_point();
     if (threads <= 1) {
@@ -529,6 +532,8 @@ class QueueProcess {
       }
       if (failure) std::rethrow_exception(failure);
     }
+    output_.resize(points_ * N);  // once, at its size: no copies of a growing vector
+    for (std::size_t p = 0; p < points_; ++p) std::copy(points_store_[p].x, points_store_[p].x + N, output_.data() + p * N);
     return {candidates_tried_, stopped_};
   }
 
@@ -550,13 +555,9 @@ class QueueProcess {
   void place(const double* x) {
     const auto index = static_cast<std::uint32_t>(points_);
     ticker_.tick(points_ + 1);
-    coordinates_.insert(coordinates_.end(), x, x + N);
+    std::copy(x, x + N, points_store_.slot(index).x);
     grid_.insert(x, index);
-    Entry<N>& e = queue_.slot(queued_);
-    e.point = index;
-    e.visit = 0;
-    std::copy(x, x + N, e.x);
-    ++queued_;
+    queue_.slot(queued_++) = Entry{index, 0};
     ++points_;
     points_published_.store(static_cast<std::uint32_t>(points_), std::memory_order_release);
   }
@@ -564,8 +565,9 @@ class QueueProcess {
   // Candidate t of visit v of point i comes from the words of (seed, i + 1, v, t), so the candidates
   // are the same whoever throws them. Appends the survivors: in the domain, and clear of the points
   // the grid holds now.
-  void throw_candidates(const Entry<N>& entry, std::vector<double>& survivors, std::vector<std::uint32_t>& thrown) const {
+  void throw_candidates(const Entry& entry, std::vector<double>& survivors, std::vector<std::uint32_t>& thrown) const {
     const std::uint64_t visit_key = hash_combine(hash_combine(key_, std::uint64_t{entry.point} + 1), entry.visit);
+    const double* parent = points_store_[entry.point].x;
     // One candidate behind: candidate t's own cell is fetched while t + 1 is drawn.
     double candidates[2][N];
     bool pending = false;  // candidate t - 1 is in the domain and waits for its check
@@ -575,7 +577,7 @@ class QueueProcess {
       if (t < k_) {
         RandomWords words{hash_combine(visit_key, t)};
         uniform_in_annulus<N>(words, normal_, r_, candidate);
-        for (int j = 0; j < N; ++j) candidate[j] += entry.x[j];
+        for (int j = 0; j < N; ++j) candidate[j] += parent[j];
         inside = box_.contains(candidate, N);
         if (inside) grid_.prefetch(candidate);
       }
@@ -640,7 +642,7 @@ class QueueProcess {
   bool clear_since(const double* x, std::uint32_t since) const {
     if (points_ - since <= kDirectRecentPoints) {
       for (std::size_t p = since; p < points_; ++p) {
-        const double* y = coordinates_.data() + p * N;
+        const double* y = points_store_[p].x;
         double dist2 = 0.0;
         for (int j = 0; j < N; ++j) dist2 += (x[j] - y[j]) * (x[j] - y[j]);
         if (dist2 < r_ * r_) return false;
@@ -653,7 +655,7 @@ class QueueProcess {
   // One entry's survivors, in order; false once max_points are placed.
   bool commit_entry(std::uint64_t e, const double* survivors, const std::uint32_t* thrown, std::size_t count,
                     std::uint32_t snapshot) {
-    const Entry<N> entry = queue_[e];
+    const Entry entry = queue_[e];
     bool placed = false;
     for (std::size_t m = 0; m < count; ++m) {
       const double* x = survivors + m * N;
@@ -666,9 +668,7 @@ class QueueProcess {
       }
     }
     if (placed) {  // the point is queued again, after the points it placed
-      Entry<N>& again = queue_.slot(queued_++);
-      again = entry;
-      ++again.visit;
+      queue_.slot(queued_++) = Entry{entry.point, entry.visit + 1};
     }
     queue_published_.store(queued_, std::memory_order_release);
     return true;
@@ -725,8 +725,9 @@ class QueueProcess {
   const NormalZiggurat& normal_;
   CellGrid<N> grid_;
   const ProgressTicker ticker_;
-  std::vector<double>& coordinates_;  // the output: committing thread only
-  StableArray<Entry<N>> queue_;
+  std::vector<double>& output_;
+  StableArray<Point<N>> points_store_;  // written by the committing thread, read by all
+  StableArray<Entry> queue_;
   std::unique_ptr<Block<N>[]> blocks_;
   // Committing thread only.
   std::uint64_t points_ = 0, queued_ = 0, candidates_tried_ = 0;
