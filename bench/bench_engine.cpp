@@ -133,13 +133,27 @@ void BM_NearestNeighbours7D(benchmark::State& state) {
 }
 BENCHMARK(BM_NearestNeighbours7D)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// Poisson disk on [0,1]^5 with r = 0.1 (about 70,000 points).
+// Poisson disk on [0,1]^5 with r = 0.1, saturated (about 71,600 points); arg: threads (0 = all).
 void BM_PoissonDisk5D(benchmark::State& state) {
   PoissonDiskOptions o;
   o.radius = 0.1;
-  for (auto _ : state) benchmark::DoNotOptimize(poisson_disk(5, o, 1));
+  std::size_t points = 0;
+  for (auto _ : state) points = poisson_disk(5, o, 1, static_cast<int>(state.range(0))).points.size();
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(points));
 }
-BENCHMARK(BM_PoissonDisk5D)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_PoissonDisk5D)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
+
+// The main job's Poisson disk row: r = 0.1 on [0, 0.6]^7, 6^7 = 279,936 points asked for (reached
+// before the set saturates); arg: threads (0 = all).
+void BM_PoissonDiskPaper7D(benchmark::State& state) {
+  PoissonDiskOptions o;
+  o.radius = 0.1;
+  o.domain = Box{0.0, 0.6};
+  o.max_points = 279936;
+  for (auto _ : state) benchmark::DoNotOptimize(poisson_disk(7, o, 1, static_cast<int>(state.range(0))));
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(o.max_points));
+}
+BENCHMARK(BM_PoissonDiskPaper7D)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 
 // Owen-scrambled Sobol at the sizes scripts/bench_vs_anchors compares with SciPy: 2^17 points in 6D and
 // 2^18 in 7D (args: dimension, log2 count), all threads.

@@ -293,7 +293,7 @@ PointSet generate_points(const SampleConfig& config, const MethodPlan& plan, Met
       o.candidates = config.pds_candidates;
       o.max_points = plan.requested;
       o.domain = plan.domain;
-      PoissonDiskResult r = poisson_disk(config.dimension, o, config.seed, report);
+      PoissonDiskResult r = poisson_disk(config.dimension, o, config.seed, config.threads, report);
       facts.radius = plan.pds_radius;
       facts.saturated = !r.reached_max_points;
       result.notes = r.reached_max_points ? "stopped at the requested count" : "saturated (active list empty)";

@@ -10,37 +10,58 @@
 
 namespace dfvn {
 
+// Where the cells of side r live: a dense array of all (side / r)^N cells, or a hash table of the
+// occupied ones (room for min(max_points, cells) of them). `automatic` takes the dense array when it
+// costs at most 8x the coordinates of the points it may hold (plus 16 bytes each), or 64 MiB, the
+// hash table beyond: in practice only a max_points far below the cell count gets the table. The
+// output is the same for all three.
+enum class PoissonDiskGrid { automatic, dense, hashed };
+
 struct PoissonDiskOptions {
   double radius = 0.1;     // no two points closer than this
-  int candidates = 30;     // Bridson's k: attempts around an active point before it retires
+  int candidates = 30;     // Bridson's k: candidates thrown per visit of a point
   std::uint64_t max_points = std::numeric_limits<std::uint64_t>::max();  // stop once this many are placed
   Box domain;
+  PoissonDiskGrid grid = PoissonDiskGrid::automatic;
 
   void validate(int dimension) const;  // throws std::invalid_argument naming the option
 };
 
 struct PoissonDiskResult {
   PointSet points;
-  std::uint64_t candidates_tried = 0;
-  bool reached_max_points = false;  // false: the active list emptied first (the set is saturated)
+  std::uint64_t candidates_tried = 0;  // k per visit, up to the candidate that placed the last point
+  bool reached_max_points = false;     // false: the active list emptied first (the set is saturated)
 };
 
-// Bridson's algorithm: start from one uniform point; repeatedly pick a random active point and try
-// up to k candidates uniform in the volume of the annulus [r, 2r] around it; the first candidate that
-// lies in the domain and at distance >= r from every point is accepted and becomes active; a point
-// whose k candidates all fail retires.
+// Bridson's algorithm with the active list as a first-in first-out queue of visits. Start from one
+// uniform point. A visit throws k candidates uniform in the volume of the annulus [r, 2r] around its
+// point and places every candidate that lies in the domain at distance >= r from every point placed
+// so far, in the order thrown (as SciPy's qmc.PoissonDisk does); placed points join the queue, and so
+// does the visited point again if its visit placed any, else it retires (Bridson's rule: a retired
+// point's last k candidates all failed). It ends when the queue empties (the set is saturated) or
+// max_points are placed. Points come out in the order placed.
 //
-// Conflicts are found with a hashed grid of cells of side r: only occupied cells are stored (memory
-// O(points), never a dense (sqrt(N)/r)^N array), and a candidate visits only the neighbouring cells
-// (offsets -1, 0, +1 per axis) whose box comes closer than r, pruned axis by axis. Every point that
-// could be closer than r is compared by its exact distance, so the guarantee holds in every dimension
+// Candidates keep that exact law: the ones that fall outside the domain (half of them in the 7D paper
+// row) are drawn and then dropped before any grid look-up. Not drawing them at all would need the
+// volume of the annulus inside the box, which has no closed form near its corners, or another law.
+//
+// Candidate t of visit v of point i is a pure function of (seed, i, v, t), so the process is
+// deterministic per seed, and it runs on several threads without changing: one thread makes the
+// decisions in queue order, while helper threads throw the candidates of later visits ahead of it and
+// check them against the points placed when they began; the deciding thread checks those survivors
+// only against the points placed since. The output does not depend on the thread count or timing.
+//
+// Conflicts are found in a grid of cells of side r (dense or hashed, PoissonDiskGrid) that holds the
+// points' coordinates in their cells: a candidate visits only the cells whose box comes closer than
+// r, the nearest first, and compares exact distances, so the guarantee holds in every dimension
 // (SciPy 1.10's grid of side r/sqrt(N) checks only +-2 cells, which misses conflicts for N >= 5).
-// Deterministic per seed: all randomness is keyed by (seed, candidate counter). `progress`: points
-// placed over max_points (a saturated set stops short of 1).
+// `threads`: 0 = all cores. `progress`: points placed over max_points (a saturated set stops short
+// of 1), reported from one thread.
 template <int N>
-PoissonDiskResult poisson_disk(const PoissonDiskOptions& options, std::uint64_t seed, const FractionProgress& progress = {});
+PoissonDiskResult poisson_disk(const PoissonDiskOptions& options, std::uint64_t seed, int threads = 0,
+                               const FractionProgress& progress = {});
 
-PoissonDiskResult poisson_disk(int dimension, const PoissonDiskOptions& options, std::uint64_t seed,
+PoissonDiskResult poisson_disk(int dimension, const PoissonDiskOptions& options, std::uint64_t seed, int threads = 0,
                                const FractionProgress& progress = {});
 
 }  // namespace dfvn
