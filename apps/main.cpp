@@ -25,7 +25,8 @@
 #include "field/evaluate_points.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
-#include "io/json_report.hpp"
+#include "io/field_csv.hpp"
+#include "experiment/json_report.hpp"
 #include "io/markdown_text.hpp"
 #include "io/point_file.hpp"
 #include "reproduce/cnj_study.hpp"
@@ -34,10 +35,10 @@
 #include "io/point_reader.hpp"
 #include "reproduce/integration.hpp"
 #include "reproduce/reproduce.hpp"
-#include "sampling/experiment.hpp"
+#include "experiment/experiment.hpp"
 #include "stats/distance_scale.hpp"
 #include "stats/point_set_statistics.hpp"
-#include "stats/realizations.hpp"
+#include "experiment/realizations.hpp"
 #include "stats/spectrum.hpp"
 
 namespace {
@@ -306,7 +307,9 @@ struct FieldCommand {
     query.field = field_options();
     query.threads = common.threads;
     try {
-      dfvn::write_file_atomically(output, dfvn::evaluate_field_csv(query, points));
+      std::vector<double> velocity(points.rows() * points.dimension), values(points.rows() * (points.dimension - 1));
+      dfvn::evaluate_field(query, points.coordinates.data(), points.rows(), velocity.data(), values.data());
+      dfvn::write_file_atomically(output, dfvn::field_csv(points, velocity.data(), values.data(), query.threads));
     } catch (const std::invalid_argument& e) {
       fail(input_name() + ", " + e.what());
     }

@@ -15,7 +15,7 @@
 #include "field/constraint.hpp"
 #include "integrate/trace.hpp"
 #include "sampling/lattice.hpp"
-#include "sampling/point_set.hpp"
+#include "core/point_set.hpp"
 
 namespace dfvn {
 

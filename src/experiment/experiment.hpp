@@ -11,7 +11,7 @@
 #include "core/progress.hpp"
 #include "sampling/curl_noise_jitter.hpp"
 #include "sampling/lattice.hpp"
-#include "sampling/point_set.hpp"
+#include "core/point_set.hpp"
 #include "sampling/sobol.hpp"
 #include "sampling/sphere_jitter.hpp"
 #include "stats/lattice_displacement.hpp"

@@ -1,9 +1,9 @@
-#include "stats/realizations.hpp"
+#include "experiment/realizations.hpp"
 
 #include <gtest/gtest.h>
 
 #include "io/csv.hpp"
-#include "io/json_report.hpp"
+#include "experiment/json_report.hpp"
 
 #include <cmath>
 

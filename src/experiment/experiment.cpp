@@ -1,4 +1,4 @@
-#include "sampling/experiment.hpp"
+#include "experiment/experiment.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,10 +1,10 @@
-#include "io/json_report.hpp"
+#include "experiment/json_report.hpp"
 
 #include <map>
 
 #include <nlohmann/json.hpp>
 
-#include "stats/realizations.hpp"
+#include "experiment/realizations.hpp"
 
 namespace dfvn {
 

@@ -1,4 +1,4 @@
-#include "stats/realizations.hpp"
+#include "experiment/realizations.hpp"
 
 #include <algorithm>
 #include <charconv>

@@ -1,5 +1,5 @@
 // The whole sampling experiment: determinism, and the paper protocol against Table 1.
-#include "sampling/experiment.hpp"
+#include "experiment/experiment.hpp"
 
 #include "io/csv.hpp"
 

@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "sampling/experiment.hpp"
+#include "experiment/experiment.hpp"
 #include "stats/point_set_statistics.hpp"
 
 namespace dfvn {

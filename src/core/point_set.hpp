@@ -1,11 +1,10 @@
-// A point set in a cube-shaped domain, and the names of the generators and protocols.
+// A point set in a cube-shaped domain (or the ball inscribed in it): the type every floor above core
+// shares (generators make it, evaluators and the point files read it).
 #pragma once
 
 #include <cmath>
 #include <cstdint>
 #include <numbers>
-#include <string>
-#include <string_view>
 #include <vector>
 
 #include "core/torus.hpp"
@@ -42,18 +41,9 @@ struct PointSet {
   const double* point(std::size_t i) const { return coordinates.data() + i * dimension; }
 };
 
-// jitter_matched: jitter whose RMS displacement equals CNJ's in the same run (sampling/jitter.hpp).
-enum class Method { cnj, jitter, jitter_matched, pds, sobol, random, halton, lhs };
-inline constexpr Method kAllMethods[] = {Method::cnj,   Method::jitter, Method::jitter_matched, Method::pds,
-                                         Method::sobol, Method::random, Method::halton,         Method::lhs};
-Method parse_method(std::string_view name);  // throws std::invalid_argument listing the names
-std::string_view to_string(Method method);
-std::string method_names();  // "cnj, jitter, jitter-matched, ..."
-
-// paper: Section 5.1 exactly as data/PROTOCOL.md establishes it. unit: every method in the unit
-// cube at the density of a cell-centred K^N lattice.
-enum class Protocol { paper, unit };
-Protocol parse_protocol(std::string_view name);
-std::string_view to_string(Protocol protocol);
+// The (N-1)-dimensional area of the unit sphere S^{N-1}: 2 pi^(N/2) / Gamma(N/2).
+inline double sphere_area(int dimension) {
+  return 2.0 * std::pow(std::numbers::pi, 0.5 * dimension) / std::tgamma(0.5 * dimension);
+}
 
 }  // namespace dfvn
