@@ -66,6 +66,15 @@ ordered_json summary_json(const std::vector<std::pair<std::string, ordered_json>
   return summary;
 }
 
+// A report's head: the program, its version and the run's parameters, in that order.
+ordered_json report_head(ordered_json parameters) {
+  ordered_json out;
+  out["program"] = "dfvn-sample";
+  out["version"] = DFVN_VERSION;
+  out["parameters"] = std::move(parameters);
+  return out;
+}
+
 }  // namespace
 
 std::string sampling_json(const SampleConfig& config, const std::vector<SamplingRealization>& realizations, bool timing) {
@@ -137,10 +146,7 @@ std::string sampling_json(const SampleConfig& config, const std::vector<Sampling
       results.push_back(std::move(entry));
     }
   }
-  ordered_json out;
-  out["program"] = "dfvn-sample";
-  out["version"] = DFVN_VERSION;
-  out["parameters"] = std::move(parameters);
+  ordered_json out = report_head(std::move(parameters));
   out["results"] = std::move(results);
   if (realizations.size() > 1) out["summary"] = summary_json(members);
   return dump(out);
@@ -169,10 +175,7 @@ std::string point_statistics_json(const PointStatisticsRun& run) {
     members.emplace_back("all", entry);
     sets.push_back(std::move(entry));
   }
-  ordered_json out;
-  out["program"] = "dfvn-sample";
-  out["version"] = DFVN_VERSION;
-  out["parameters"] = std::move(parameters);
+  ordered_json out = report_head(std::move(parameters));
   out["sets"] = std::move(sets);
   if (run.sets.size() > 1) out["summary"] = summary_json(members)["all"];
   return dump(out);
