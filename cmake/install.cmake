@@ -32,6 +32,7 @@ install(DIRECTORY src/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/dfvn
         PATTERN "trace_impl.hpp" EXCLUDE
         PATTERN "turning_bands_kernel.hpp" EXCLUDE
         PATTERN "periodic_images.hpp" EXCLUDE
+        PATTERN "neighbour_loop.hpp" EXCLUDE
         REGEX "integrate/trace_table.hpp" EXCLUDE)
 
 install(EXPORT dfvnTargets NAMESPACE dfvn:: DESTINATION ${DFVN_CMAKE_PACKAGE_DIR})

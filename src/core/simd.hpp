@@ -6,12 +6,12 @@
 namespace dfvn {
 
 enum class Simd {
-  best,      // the widest build the CPU runs: AVX-512 or AVX2, depending on the kernel
+  best,      // the widest build the CPU runs: AVX-512, then AVX2, as each kernel has them
   baseline,  // SSE2, which every x86-64 CPU has
 };
 
-// Whether this CPU runs the AVX2 build (Sobol's scramble) and the AVX-512 build (F, DQ and VL: the
-// turning-bands evaluation kernel). False off x86-64, where only the baseline build exists. The kernels and
+// Whether this CPU runs the AVX2 builds (Sobol's scramble, the turning-bands evaluation kernel) and the
+// AVX-512 build (F, DQ and VL: the turning-bands evaluation kernel). False off x86-64, where only the baseline build exists. The kernels and
 // the tests that compare their builds ask the same question here.
 inline bool cpu_has_avx2() {
 #if defined(__x86_64__)

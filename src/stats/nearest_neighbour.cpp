@@ -3,7 +3,6 @@
 #include "core/message_text.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -15,6 +14,7 @@
 #include "core/quantile.hpp"
 #include "stats/distance_scale.hpp"
 #include "stats/kd_tree.hpp"
+#include "stats/neighbour_loop.hpp"
 
 namespace dfvn {
 
@@ -36,28 +36,17 @@ std::vector<double> nearest_neighbour_distances_nanoflann(const PointSet& points
   const PointSetAdaptor<N> adaptor{points};
   KdTree<N> tree(N, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(kKdTreeLeafSize));
   tree.buildIndex();
-  const auto count = static_cast<std::int64_t>(points.size());
-  std::vector<double> distances(static_cast<std::size_t>(count));
-  // Queries done, counted per chunk of the schedule; only the first thread reports.
-  constexpr std::int64_t kChunk = 4096;
-  std::atomic<std::uint64_t> queries_done{0};
-#pragma omp parallel for schedule(dynamic, kChunk) num_threads(resolve_threads(threads))
-  for (std::int64_t i = 0; i < count; ++i) {
-    if (progress && i % kChunk == 0) {
-      const std::uint64_t done = queries_done.fetch_add(static_cast<std::uint64_t>(kChunk), std::memory_order_relaxed);
-      if (omp_get_thread_num() == 0) progress(std::min(1.0, static_cast<double>(done) / static_cast<double>(count)));
-    }
+  return neighbour_loop::for_every_point(static_cast<std::int64_t>(points.size()), threads, progress, [&](std::size_t i) {
     std::uint32_t index[2];
     double dist2[2];
     nanoflann::KNNResultSet<double, std::uint32_t> result(2);
     result.init(index, dist2);
-    tree.findNeighbors(result, points.point(static_cast<std::size_t>(i)), nanoflann::SearchParams());
+    tree.findNeighbors(result, points.point(i), nanoflann::SearchParams());
     // The point itself is at distance 0, so one of the two results is the nearest other point (or a
     // duplicate, also at 0); take whichever is not i.
     const std::uint32_t other = index[0] == static_cast<std::uint32_t>(i) ? index[1] : index[0];
-    distances[static_cast<std::size_t>(i)] = distance_between(points, static_cast<std::size_t>(i), other);
-  }
-  return distances;
+    return distance_between(points, i, other);
+  });
 }
 
 }  // namespace
@@ -90,15 +79,7 @@ double distance_between(const PointSet& points, std::size_t i, std::size_t j) {
 }
 
 std::vector<double> nearest_neighbour_distances_brute_force(const PointSet& points) {
-  const std::size_t n = points.size();
-  std::vector<double> best(n, std::numeric_limits<double>::infinity());
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t k = i + 1; k < n; ++k) {
-      const double d = distance_between(points, i, k);
-      best[i] = std::min(best[i], d);
-      best[k] = std::min(best[k], d);
-    }
-  return best;
+  return neighbour_loop::brute_force(points.size(), [&](std::size_t i, std::size_t k) { return distance_between(points, i, k); });
 }
 
 NearestNeighbourSummary summarize_nearest_neighbours(std::vector<double> distances, const PointSet& points) {

@@ -1,7 +1,6 @@
 #include "stats/periodic_neighbours.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -13,6 +12,7 @@
 #include "core/parallel.hpp"
 #include "stats/distance_scale.hpp"
 #include "stats/kd_tree.hpp"
+#include "stats/neighbour_loop.hpp"
 #include "stats/periodic_images.hpp"
 
 namespace dfvn {
@@ -62,18 +62,8 @@ std::vector<double> periodic_distances_kd_tree(const PointSet& points, int threa
   const PointSetAdaptor<N> adaptor{points};
   KdTree<N> tree(N, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(kKdTreeLeafSize));
   tree.buildIndex();
-  const auto count = static_cast<std::int64_t>(points.size());
   const double lo = points.domain.lo, side = points.domain.side;
-  std::vector<double> distances(static_cast<std::size_t>(count));
-  constexpr std::int64_t kChunk = 4096;
-  std::atomic<std::uint64_t> done{0};
-#pragma omp parallel for schedule(dynamic, kChunk) num_threads(resolve_threads(threads))
-  for (std::int64_t i = 0; i < count; ++i) {
-    if (progress && i % kChunk == 0) {
-      const std::uint64_t d = done.fetch_add(static_cast<std::uint64_t>(kChunk), std::memory_order_relaxed);
-      if (omp_get_thread_num() == 0) progress(std::min(1.0, static_cast<double>(d) / static_cast<double>(count)));
-    }
-    const auto self = static_cast<std::size_t>(i);
+  return neighbour_loop::for_every_point(static_cast<std::int64_t>(points.size()), threads, progress, [&](std::size_t self) {
     double best = std::numeric_limits<double>::infinity();
     // The nearest point other than i to a query position (the point or one of its images); its
     // minimum-image distance decides, so that every image agrees with the brute force to the bit.
@@ -92,9 +82,8 @@ std::vector<double> periodic_distances_kd_tree(const PointSet& points, int threa
     const double* x = points.point(self);
     query(x);
     for_each_periodic_image<N>(x, lo, side, [&] { return best; }, query);
-    distances[self] = best;
-  }
-  return distances;
+    return best;
+  });
 }
 
 }  // namespace
@@ -122,15 +111,8 @@ std::vector<double> periodic_nearest_neighbour_distances(const PointSet& points,
 }
 
 std::vector<double> periodic_nearest_neighbour_distances_brute_force(const PointSet& points) {
-  const std::size_t n = points.size();
-  std::vector<double> best(n, std::numeric_limits<double>::infinity());
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t k = i + 1; k < n; ++k) {
-      const double d = periodic_distance_between(points, i, k);
-      best[i] = std::min(best[i], d);
-      best[k] = std::min(best[k], d);
-    }
-  return best;
+  return neighbour_loop::brute_force(points.size(),
+                                     [&](std::size_t i, std::size_t k) { return periodic_distance_between(points, i, k); });
 }
 
 }  // namespace dfvn

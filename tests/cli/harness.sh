@@ -52,6 +52,21 @@ expect_message() {
   grep -Eq -- "$2" "$work/err" && ok || bad "$1: '$(head -c 300 "$work/err" | cat -v)' does not match '$2'"
 }
 
+# expect_finite NAME FILE...: the files exist and hold no NaN or Inf.
+expect_finite() {
+  local name=$1
+  shift
+  for f in "$@"; do
+    if [[ ! -s $f ]]; then
+      bad "$name: $f is missing or empty"
+    elif grep -Eiq '(^|[^a-z])(nan|-?inf(inity)?)([^a-z]|$)' "$f"; then
+      bad "$name: $f holds NaN or Inf: $(grep -Eim1 'nan|inf' "$f" | head -c 200)"
+    else
+      ok
+    fi
+  done
+}
+
 finish() {
   echo "$1: $passed passed, $failed failed"
   [[ $failed -eq 0 ]] && exit 0

@@ -5,21 +5,6 @@
 set -u
 source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
-# expect_finite NAME FILE...: the files exist and hold no NaN or Inf.
-expect_finite() {
-  local name=$1
-  shift
-  for f in "$@"; do
-    if [[ ! -s $f ]]; then
-      bad "$name: $f is missing or empty"
-    elif grep -Eiq '(^|[^a-z])(nan|-?inf(inity)?)([^a-z]|$)' "$f"; then
-      bad "$name: $f holds NaN or Inf: $(grep -Eim1 'nan|inf' "$f" | head -c 200)"
-    else
-      ok
-    fi
-  done
-}
-
 # field CSV COLUMN: the value of COLUMN (by header name) in the first data row.
 field() { awk -F, -v name="$2" 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == name) c = i } NR == 2 { print $c }' "$1"; }
 

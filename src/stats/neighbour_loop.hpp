@@ -1,0 +1,49 @@
+// The loops that the Euclidean and the periodic nearest-neighbour distances share (private to stats/,
+// not installed): one query per point in parallel, with progress, and the O(n^2) brute force that the
+// tests compare them with.
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "core/parallel.hpp"
+#include "core/progress.hpp"
+
+namespace dfvn::neighbour_loop {
+
+// distances[i] = nearest(i) for every i < count, in chunks of a dynamic schedule; queries done are
+// counted per chunk, and only the first thread reports them. Each slot is written by one query, so the
+// result is the same for any thread count.
+template <typename Nearest>
+std::vector<double> for_every_point(std::int64_t count, int threads, const FractionProgress& progress, Nearest nearest) {
+  std::vector<double> distances(static_cast<std::size_t>(count));
+  constexpr std::int64_t kChunk = 4096;
+  std::atomic<std::uint64_t> queries_done{0};
+#pragma omp parallel for schedule(dynamic, kChunk) num_threads(resolve_threads(threads))
+  for (std::int64_t i = 0; i < count; ++i) {
+    if (progress && i % kChunk == 0) {
+      const std::uint64_t done = queries_done.fetch_add(static_cast<std::uint64_t>(kChunk), std::memory_order_relaxed);
+      if (omp_get_thread_num() == 0) progress(std::min(1.0, static_cast<double>(done) / static_cast<double>(count)));
+    }
+    distances[static_cast<std::size_t>(i)] = nearest(static_cast<std::size_t>(i));
+  }
+  return distances;
+}
+
+// Every pair once: distance(i, k) for i < k.
+template <typename Distance>
+std::vector<double> brute_force(std::size_t count, Distance distance) {
+  std::vector<double> best(count, std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < count; ++i)
+    for (std::size_t k = i + 1; k < count; ++k) {
+      const double d = distance(i, k);
+      best[i] = std::min(best[i], d);
+      best[k] = std::min(best[k], d);
+    }
+  return best;
+}
+
+}  // namespace dfvn::neighbour_loop
