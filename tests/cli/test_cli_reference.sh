@@ -9,6 +9,8 @@
 #   DFVN_SAMPLE=build/dfvn-sample tests/cli/test_cli_reference.sh            compare
 #   DFVN_SAMPLE=build/dfvn-sample tests/cli/test_cli_reference.sh --record   rewrite the reference
 set -u
+# The reference holds gnuplot's figures (PNG, byte for byte): without gnuplot the test is skipped.
+command -v gnuplot >/dev/null || { echo "gnuplot not found: skipped"; exit 77; }
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 reference="$here/reference"
 bin="$(cd "$(dirname "$DFVN_SAMPLE")" && pwd)/$(basename "$DFVN_SAMPLE")"
