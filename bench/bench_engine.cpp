@@ -133,6 +133,21 @@ void BM_NearestNeighbours7D(benchmark::State& state) {
 }
 BENCHMARK(BM_NearestNeighbours7D)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The main job's Sobol (2^18 points, Owen) and Poisson disk (279,936 points, r = 0.1 on [0, 0.6]^7) sets,
+// in no spatial order: nanoflann build + k = 2 queries on one thread (issue 22: queries in tree order).
+void BM_NearestNeighboursUnordered7D(benchmark::State& state) {
+  PoissonDiskOptions o;
+  o.radius = 0.1;
+  o.domain = Box{0.0, 0.6};
+  o.max_points = 279936;
+  const PointSet points = state.range(0) == 0 ? sobol_points(7, 1u << 18, Box{0.0, 0.6}, Scramble::owen, 1, 0)
+                                              : poisson_disk(7, o, 1, 0).points;
+  state.SetLabel(state.range(0) == 0 ? "sobol" : "pds");
+  for (auto _ : state) benchmark::DoNotOptimize(nearest_neighbour_distances(points, KnnBackend::nanoflann, 1));
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(points.size()));
+}
+BENCHMARK(BM_NearestNeighboursUnordered7D)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // Poisson disk on [0,1]^5 with r = 0.1, saturated (about 71,600 points); arg: threads (0 = all).
 void BM_PoissonDisk5D(benchmark::State& state) {
   PoissonDiskOptions o;

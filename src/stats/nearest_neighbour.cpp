@@ -36,7 +36,7 @@ std::vector<double> nearest_neighbour_distances_nanoflann(const PointSet& points
   const PointSetAdaptor<N> adaptor{points};
   KdTree<N> tree(N, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(kKdTreeLeafSize));
   tree.buildIndex();
-  return neighbour_loop::for_every_point(static_cast<std::int64_t>(points.size()), threads, progress, [&](std::size_t i) {
+  return neighbour_loop::for_every_point(neighbour_loop::tree_order(tree), threads, progress, [&](std::size_t i) {
     std::uint32_t index[2];
     double dist2[2];
     nanoflann::KNNResultSet<double, std::uint32_t> result(2);

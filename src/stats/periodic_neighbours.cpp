@@ -63,7 +63,7 @@ std::vector<double> periodic_distances_kd_tree(const PointSet& points, int threa
   KdTree<N> tree(N, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(kKdTreeLeafSize));
   tree.buildIndex();
   const double lo = points.domain.lo, side = points.domain.side;
-  return neighbour_loop::for_every_point(static_cast<std::int64_t>(points.size()), threads, progress, [&](std::size_t self) {
+  return neighbour_loop::for_every_point(neighbour_loop::tree_order(tree), threads, progress, [&](std::size_t self) {
     double best = std::numeric_limits<double>::infinity();
     // The nearest point other than i to a query position (the point or one of its images); its
     // minimum-image distance decides, so that every image agrees with the brute force to the bit.
