@@ -7,7 +7,7 @@
 #include <pybind11/stl.h>
 
 #include "core/dimension.hpp"
-#include "sampling/experiment.hpp"
+#include "experiment/experiment.hpp"
 #include "numpy_points.hpp"
 
 namespace dfvn::python {

@@ -1,8 +1,7 @@
 #include "field/evaluate_points.hpp"
 
 #include <algorithm>
-#include <stdexcept>
-#include <vector>
+#include <cstdint>
 
 #include <fmt/format.h>
 
@@ -30,38 +29,6 @@ void evaluate_field(const FieldQuery& query, const double* points, std::size_t r
       std::copy(s.value.begin(), s.value.end(), values + row * (N - 1));
     }
   });
-}
-
-std::string evaluate_field_csv(const FieldQuery& query, const PointTable& points) {
-  if (points.dimension != query.dimension)
-    throw std::invalid_argument("point table has dimension " + std::to_string(points.dimension) +
-                                ", query has " + std::to_string(query.dimension));
-  const int n = query.dimension;
-  const std::size_t rows = points.rows();
-  std::vector<double> velocity(rows * n), values(rows * (n - 1));
-  evaluate_field(query, points.coordinates.data(), rows, velocity.data(), values.data());
-  const auto count = static_cast<std::int64_t>(rows);
-  // Rows are formatted in fixed blocks and joined in order, so the output is the same for any
-  // number of threads.
-  constexpr std::int64_t kBlock = 4096;
-  const std::int64_t blocks = (count + kBlock - 1) / kBlock;
-  std::vector<std::string> text(static_cast<std::size_t>(blocks));
-#pragma omp parallel for schedule(dynamic, 1) num_threads(resolve_threads(query.threads))
-  for (std::int64_t b = 0; b < blocks; ++b) {
-    std::string& out = text[static_cast<std::size_t>(b)];
-    for (std::int64_t i = b * kBlock; i < std::min(count, (b + 1) * kBlock); ++i) {
-      const auto row = static_cast<std::size_t>(i);
-      for (int j = 0; j < n; ++j) append_double(out, points.row(row)[j]), out += ',';
-      for (int j = 0; j < n; ++j) append_double(out, velocity[row * n + j]), out += ',';
-      for (int j = 0; j < n - 1; ++j) {
-        append_double(out, values[row * (n - 1) + j]);
-        out += (j + 2 < n) ? ',' : '\n';
-      }
-    }
-  }
-  std::string csv = numbered_header("x", n) + ',' + numbered_header("c", n) + ',' + numbered_header("f", n - 1, 1) + '\n';
-  for (const auto& block : text) csv += block;
-  return csv;
 }
 
 }  // namespace dfvn

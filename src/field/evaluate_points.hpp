@@ -1,12 +1,10 @@
-// The `field` command's work: evaluate the DFVN field at a table of points and format the result.
+// The `field` command's work: evaluate the DFVN field at a table of points (io/field_csv.hpp writes it).
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
-#include <string>
 
 #include "field/dfvn_field.hpp"
-#include "io/csv.hpp"
 
 namespace dfvn {
 
@@ -22,11 +20,5 @@ struct FieldQuery {
 // thread count. Throws std::invalid_argument, naming the point (1-based) and column, when frequency *
 // coordinate is outside the noise domain (noise/noise_domain.hpp), NaN included; nothing is written then.
 void evaluate_field(const FieldQuery& query, const double* points, std::size_t rows, double* velocity, double* values);
-
-// CSV with header x0..x{N-1},c0..c{N-1},f1..f{N-1} and one row per input point: the point, the
-// field vector c(x) and the N-1 noise values f_i(x), each with 17 significant digits. The bytes do
-// not depend on the thread count. Throws std::invalid_argument, naming the point and column, when
-// frequency * coordinate is outside the noise domain (noise/noise_domain.hpp).
-std::string evaluate_field_csv(const FieldQuery& query, const PointTable& points);
 
 }  // namespace dfvn

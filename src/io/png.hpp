@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "warp/image_warp.hpp"
+#include "core/image.hpp"
 
 namespace dfvn {
 

@@ -15,7 +15,7 @@
 #include "core/seeds.hpp"
 #include "io/atomic_file.hpp"
 #include "plot/gnuplot.hpp"
-#include "stats/realizations.hpp"
+#include "experiment/realizations.hpp"
 
 namespace dfvn {
 

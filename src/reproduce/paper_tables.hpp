@@ -4,7 +4,8 @@
 #include <optional>
 #include <vector>
 
-#include "sampling/point_set.hpp"
+#include "core/point_set.hpp"
+#include "sampling/method.hpp"
 
 namespace dfvn {
 

@@ -7,8 +7,8 @@
 #include <string_view>
 #include <vector>
 
-#include "sampling/experiment.hpp"
-#include "stats/realizations.hpp"
+#include "experiment/experiment.hpp"
+#include "experiment/realizations.hpp"
 #include "warp/image_warp.hpp"
 
 namespace dfvn {

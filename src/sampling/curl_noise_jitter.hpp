@@ -15,7 +15,7 @@
 #include "field/constraint.hpp"
 #include "integrate/trace.hpp"
 #include "sampling/lattice.hpp"
-#include "sampling/point_set.hpp"
+#include "core/point_set.hpp"
 
 namespace dfvn {
 
@@ -59,32 +59,20 @@ struct CnjOptions {
   DomainMode domain_mode = DomainMode::conformant;
   Bound bound = Bound::eq13;  // conformant cube and ball: how f_1 meets the boundary (field/constraint.hpp)
   // Eq. (13)'s transition width w in lattice spacings: alpha goes from 0 on the boundary to 1 at w,
-  // capped at 1/4 (field/constraint.hpp). Half a spacing: the unit protocol's outermost lattice layer
-  // (half a spacing from the faces) starts exactly where alpha reaches 1, so every point starts in
-  // the free noise and is turned only when it comes within w of a face; the noise's wavelength is
-  // 1 / frequency = 5 spacings, so the noise is untouched beyond a tenth of a wavelength from the
-  // boundary. Measured (tests/sampling/test_domain_jitter.cpp, seeds 1-3): with one spacing the
-  // outermost layer starts inside the transition, where the boundary function holds it on its level
-  // set while inner points still move out to it, and the boundary layer of width one spacing held
-  // 3% (3D, K = 40) to 1% (6D, K = 7) more points than its volume fraction (3 to 10 binomial standard
-  // errors); with half a spacing (and with a quarter) it is within 0.6 standard errors. A narrower
-  // transition makes grad alpha, and the field in it, larger (~ |f~| / w): more traces step across
-  // the boundary and are retraced (6D, K = 7: 4-8k of 117,649 against 0.6-1.9k with one spacing).
+  // capped at 1/4 (field/constraint.hpp). Half a spacing, so that the unit protocol's outermost layer
+  // starts where alpha reaches 1: wider over-fills the boundary layer, narrower retraces more traces
+  // (data/boundary_width.md holds the measurements).
   double boundary_width = 0.5;
 
   void validate() const;  // throws std::invalid_argument naming the option
 };
 
 // The integration steps M when CnjOptions::trace.steps is kStepsByDomainMode:
-//  the free field (drop mode, and the torus, which has no boundary either): 2, the choice of the CNJ
-//    study's rule (data/cnj_defaults.md). One RK4 step over the default trace time does not follow the
-//    flow from 5D on: on the paper's 7D lattice (data/cnj_paper_lattice.md, 10 seeds) its mean minimum
-//    NN distance is 0.210 spacings against 0.259 with 2 steps, and CNJ's nn_min only ties with
-//    jitter's at equal RMS displacement; with 2 steps it beats it in every dimension 3-7. On the torus
-//    the same holds (data/boundary_shares.md: the 7D main job).
-//  the bounded field (conformant cube and ball): 1. There the closest pairs form at the walls, and
-//    more steps pack worse while the CNJ stage takes longer (data/cnj_steps_main_job.md: the 7D main
-//    job in the bounded cube, seeds 1-5).
+//  the free field (drop mode, and the torus, which has no boundary either): 2, the CNJ study's choice;
+//    one RK4 step over the default trace time does not follow the flow from 5D on
+//    (data/cnj_defaults.md, data/cnj_paper_lattice.md).
+//  the bounded field (conformant cube and ball): 1; the closest pairs form at the walls, where more
+//    steps pack worse and cost more (data/cnj_steps_main_job.md).
 inline constexpr int kFreeFieldSteps = 2;
 int cnj_steps(const CnjOptions& options);
 // options.trace with its steps resolved (cnj_steps).

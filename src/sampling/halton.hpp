@@ -7,7 +7,7 @@
 
 #include <cstdint>
 
-#include "sampling/point_set.hpp"
+#include "core/point_set.hpp"
 
 namespace dfvn {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "sampling/lattice.hpp"
-#include "sampling/point_set.hpp"
+#include "core/point_set.hpp"
 
 namespace dfvn {
 

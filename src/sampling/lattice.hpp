@@ -4,7 +4,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "sampling/point_set.hpp"
+#include "core/point_set.hpp"
+#include "sampling/method.hpp"
 
 namespace dfvn {
 

@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "core/progress.hpp"
-#include "sampling/point_set.hpp"
+#include "core/point_set.hpp"
 
 namespace dfvn {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/simd.hpp"
-#include "sampling/point_set.hpp"
+#include "core/point_set.hpp"
 
 namespace dfvn {
 

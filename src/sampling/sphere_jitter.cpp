@@ -23,10 +23,6 @@ std::string_view to_string(Surface surface) { return surface == Surface::none ? 
 
 double sphere_start_spacing(int grid) { return 2.0 / grid; }
 
-double sphere_area(int dimension) {
-  return 2.0 * std::pow(std::numbers::pi, 0.5 * dimension) / std::tgamma(0.5 * dimension);
-}
-
 PointSet sphere_start_set(int dimension, int grid) {
   if (dimension < 3) throw std::invalid_argument(fmt::format("points on the sphere need N >= 3, got {}", dimension));
   const LatticeSpec lattice{dimension, grid, Protocol::unit};  // (i + 1/2) / K in [0, 1]

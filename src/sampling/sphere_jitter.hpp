@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "sampling/curl_noise_jitter.hpp"
-#include "sampling/point_set.hpp"
+#include "core/point_set.hpp"
 
 namespace dfvn {
 
@@ -23,9 +23,6 @@ std::string_view to_string(Surface surface);
 // (|x| = 1 to rounding). Points: count x N, row-major; domain [-1, 1]^N.
 PointSet sphere_start_set(int dimension, int grid);
 double sphere_start_spacing(int grid);  // h = 2 / K
-
-// The (N-1)-dimensional area of S^{N-1}: 2 pi^(N/2) / Gamma(N/2).
-double sphere_area(int dimension);
 
 struct SphereCnjResult {
   PointSet points;                  // on the unit sphere: |x| = 1 within 1e-12, every start point

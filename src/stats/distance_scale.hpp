@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "sampling/point_set.hpp"
+#include "core/point_set.hpp"
 
 namespace dfvn {
 

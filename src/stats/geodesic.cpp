@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "sampling/sphere_jitter.hpp"
+#include "core/point_set.hpp"
 
 namespace dfvn {
 

@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "sampling/point_set.hpp"
+#include "core/point_set.hpp"
 #include "stats/nearest_neighbour.hpp"
 
 namespace dfvn {

@@ -3,7 +3,7 @@
 
 #include <nanoflann.hpp>
 
-#include "sampling/point_set.hpp"
+#include "core/point_set.hpp"
 
 namespace dfvn {
 

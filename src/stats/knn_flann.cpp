@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
-#include "sampling/point_set.hpp"
+#include "core/point_set.hpp"
 #include "stats/kd_tree.hpp"
 #include "stats/nearest_neighbour.hpp"
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/progress.hpp"
-#include "sampling/point_set.hpp"
+#include "core/point_set.hpp"
 #include "stats/discrepancy.hpp"
 #include "stats/nearest_neighbour.hpp"
 

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "core/progress.hpp"
-#include "sampling/point_set.hpp"
+#include "core/point_set.hpp"
 
 namespace dfvn {
 

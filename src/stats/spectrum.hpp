@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "sampling/point_set.hpp"
+#include "core/point_set.hpp"
 
 namespace dfvn {
 

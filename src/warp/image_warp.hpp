@@ -6,24 +6,11 @@
 #include <string_view>
 #include <vector>
 
+#include "core/image.hpp"
 #include "core/progress.hpp"
 #include "integrate/trace.hpp"
 
 namespace dfvn {
-
-// An 8-bit grey image, row-major, row 0 at the top: for looking at (PNG).
-struct GrayImage {
-  int width = 0;
-  int height = 0;
-  std::vector<std::uint8_t> pixels;
-};
-
-// A grey image with values in [0, 1] kept in float, row-major, row 0 at the top: for measuring.
-struct FloatImage {
-  int width = 0;
-  int height = 0;
-  std::vector<float> values;
-};
 
 // The source image, a function of the point (x across the width in [0, 1], y down the height in
 // [0, height / width]) that can be evaluated exactly wherever a trace lands:

@@ -16,7 +16,7 @@ mv "$work/install" "$work/moved"
 prefix=$work/moved
 
 for path in bin/dfvn-sample "$DFVN_LIBDIR/libdfvn.so" include/dfvn/field/dfvn_field.hpp \
-            include/dfvn/sampling/experiment.hpp "$DFVN_LIBDIR/cmake/dfvn/dfvnConfig.cmake" \
+            include/dfvn/experiment/experiment.hpp "$DFVN_LIBDIR/cmake/dfvn/dfvnConfig.cmake" \
             "$DFVN_LIBDIR/cmake/dfvn/dfvnConfigVersion.cmake" "$DFVN_LIBDIR/cmake/dfvn/dfvnTargets.cmake" \
             "$DFVN_LIBDIR/pkgconfig/dfvn.pc" "$DFVN_DATA_DIR/figure4.gp" \
             share/bash-completion/completions/dfvn-sample; do

@@ -10,6 +10,7 @@
 
 #include "field/dfvn_field.hpp"
 #include "field/evaluate_points.hpp"
+#include "io/csv.hpp"
 #include "integrate/trace.hpp"
 #include "noise/simplex_noise.hpp"
 #include "test_support.hpp"
@@ -157,14 +158,15 @@ TEST(NoiseDomain, FieldOfAPointTableRefusesAPointOutsideTheDomain) {
   points.coordinates = {0.5, 0.5, 1e308, 0.25};
   FieldQuery query;
   query.dimension = 2;
+  std::vector<double> velocity(4), values(2);
   try {
-    evaluate_field_csv(query, points);
+    evaluate_field(query, points.coordinates.data(), points.rows(), velocity.data(), values.data());
     ADD_FAILURE() << "1e308 was accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("point 2, column 1"), std::string::npos) << e.what();
   }
   points.coordinates[2] = 0.75;
-  EXPECT_NO_THROW(evaluate_field_csv(query, points));
+  EXPECT_NO_THROW(evaluate_field(query, points.coordinates.data(), points.rows(), velocity.data(), values.data()));
 }
 
 }  // namespace

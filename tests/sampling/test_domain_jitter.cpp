@@ -94,7 +94,7 @@ TEST(ConformantJitter, SameBytesOnOneAndTwoThreads) {
 // tolerance is 3 binomial standard errors sqrt(p (1 - p) / n), what independent uniform points would
 // scatter by. Dropping CNJ loses the points that cross the faces and gains none: its layer is thinner.
 // (With a transition of one spacing instead of the default half, the conformant layer held 3-10
-// standard errors too many points: sampling/curl_noise_jitter.hpp, CnjOptions::boundary_width.)
+// standard errors too many points: data/boundary_width.md.)
 struct LayerFraction {
   double conformant, dropped, expected, standard_error;
 };

@@ -1,0 +1,162 @@
+#include "options.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+#include <unistd.h>
+
+#include "core/dimension.hpp"
+#include "core/message_text.hpp"
+#include "core/parallel.hpp"
+#include "noise/noise_domain.hpp"
+#include "sampling/curl_noise_jitter.hpp"
+#include "stats/distance_scale.hpp"
+
+namespace dfvn_cli {
+
+// Every error is one line on stderr: escape_bytes turns any newline or control byte left in the
+// message into a visible escape, so nothing reaches the terminal raw.
+void fail(const std::string& message, int code) {
+  const std::string line = dfvn::escape_bytes(message, false);
+  std::fprintf(stderr, "%s: error: %s\n", kProgram, line.c_str());
+  std::exit(code);
+}
+
+namespace {
+
+// A finite number above (or, with `or_equal`, at least) `bound`. CLI11's PositiveNumber would print
+// its whole range, DBL_MAX included, and accepts no NaN check.
+CLI::Validator finite_number(double bound, bool or_equal, const std::string& name) {
+  const std::string wanted = std::string("a finite number ") + (or_equal ? ">= " : "> ") + fmt::format("{:g}", bound);
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        double value = 0.0;
+        const bool ok = CLI::detail::lexical_cast(text, value) && std::isfinite(value) &&
+                        (or_equal ? value >= bound : value > bound);
+        return ok ? std::string() : "must be " + wanted + ", got " + dfvn::quote_for_message(text);
+      },
+      name);
+}
+// Digits only, read exactly: CLI11 would take "-1" and "18446744073709551616" as 2^64 - 1 and "" as 0.
+bool read_unsigned(const std::string& text, std::uint64_t& value) {
+  const char* end = text.data() + text.size();
+  const auto [ptr, error] = std::from_chars(text.data(), end, value);
+  return !text.empty() && text.find_first_not_of("0123456789") == std::string::npos && error == std::errc() &&
+         ptr == end;
+}
+
+}  // namespace
+
+const CLI::Validator kPositiveFinite = finite_number(0.0, false, "POSITIVE");
+const CLI::Validator kNonNegativeFinite = finite_number(0.0, true, "NONNEGATIVE");
+
+// A noise frequency in the supported range (noise/noise_domain.hpp); a subnormal one gave Inf.
+const CLI::Validator kNoiseFrequency(
+    [](std::string& text) -> std::string {
+      double value = 0.0;
+      if (CLI::detail::lexical_cast(text, value) && value >= dfvn::kMinNoiseFrequency && value <= dfvn::kMaxNoiseFrequency)
+        return {};
+      return fmt::format("must be a number in [2^-50, 2^50] = [{:g}, {:g}], got {}", dfvn::kMinNoiseFrequency,
+                         dfvn::kMaxNoiseFrequency, dfvn::quote_for_message(text));
+    },
+    "FREQUENCY");
+
+// stats --domain-side: a finite side in [2^-1000, 2^1000] (stats/distance_scale.hpp says why).
+const CLI::Validator kDomainSide(
+    [](std::string& text) -> std::string {
+      double value = 0.0;
+      if (!CLI::detail::lexical_cast(text, value)) return "must be a number, got " + dfvn::quote_for_message(text);
+      try {
+        dfvn::check_domain_side(value, "the side");
+      } catch (const std::invalid_argument& e) {
+        return e.what();
+      }
+      return {};
+    },
+    "SIDE");
+
+// CNJ's step scale: (0, 2^20] (sampling/curl_noise_jitter.hpp says why).
+const CLI::Validator kStepScale(
+    [](std::string& text) -> std::string {
+      double value = 0.0;
+      if (CLI::detail::lexical_cast(text, value) && value > 0.0 && value <= dfvn::CnjOptions::kMaxStepScale) return {};
+      return "must be a number in (0, 2^20] = (0, 1048576], got " + dfvn::quote_for_message(text);
+    },
+    "POSITIVE");
+
+const CLI::Validator kUnsignedInteger(
+    [](std::string& text) -> std::string {
+      std::uint64_t value = 0;
+      return read_unsigned(text, value) ? std::string()
+                                        : "must be an integer in 0..18446744073709551615 (2^64 - 1), got " +
+                                              dfvn::quote_for_message(text);
+    },
+    "UINT64");
+
+// --threads: 0 (all cores) or 1..max_thread_count() (core/parallel.hpp).
+const CLI::Validator kThreadCount(
+    [](std::string& text) -> std::string {
+      std::uint64_t value = 0;
+      if (read_unsigned(text, value) && value <= static_cast<std::uint64_t>(dfvn::max_thread_count())) return {};
+      return fmt::format("must be 0 (all cores) or 1..{} (4 x the {} cores, at most {}), got {}",
+                         dfvn::max_thread_count(), dfvn::core_count(), dfvn::kMaxThreads, dfvn::quote_for_message(text));
+    },
+    "THREADS");
+
+// --dim, checked against the dimensions the library instantiates.
+CLI::Option* add_dimension_option(CLI::App& cmd, int& dimension, const std::string& help) {
+  return cmd.add_option("-d,--dim", dimension, help)->check(CLI::Range(dfvn::kMinDimension, dfvn::kMaxDimension));
+}
+
+// --noise: the basis of the N-1 noise functions.
+void add_noise_option(CLI::App& cmd, std::string& noise) {
+  cmd.add_option("--noise", noise,
+                 "Noise basis of the N-1 functions: turning-bands (healthy in every dimension), simplex (the\n"
+                 "paper's construction; its field is nearly still in most of space from 4D on) or quintic-gradient\n"
+                 "(Perlin-style lattice gradient noise, the noise of the paper's image-warping shader)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"simplex", "turning-bands", "quintic-gradient"}));
+}
+
+void add_threads_option(CLI::App& app, int& threads) {
+  app.add_option("--threads", threads, "Worker threads: 0 = all cores, at most 4 x the cores (output never depends on it)")
+      ->capture_default_str()
+      ->check(kThreadCount);
+}
+
+void add_common_options(CLI::App& app, CommonOptions& common) {
+  app.add_option("-s,--seed", common.seed, "Seed of every random choice; same seed, same output")
+      ->capture_default_str()
+      ->check(kUnsignedInteger);
+  add_threads_option(app, common.threads);
+}
+
+void ProgressOptions::add_to(CLI::App& app) {
+  app.add_option("--progress", mode,
+                 "Progress on stderr: auto (a live line on a terminal, otherwise a plain line every 5 s of long\n"
+                 "work), always (also a line as each stage starts) or never")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "always", "never"}));
+  app.add_flag("-q,--quiet", quiet, "No progress on stderr (same as --progress never)");
+}
+
+dfvn::ProgressReporter* ProgressOptions::make(int stages) {
+  reporter_.emplace(quiet ? dfvn::ProgressMode::never : dfvn::parse_progress_mode(mode), stderr,
+                    ::isatty(STDERR_FILENO) == 1, kProgram);
+  reporter_->set_stage_count(stages);
+  return &*reporter_;
+}
+
+// The outputs of a reproduction: its files in `dir`, each named as "--out (table1.csv)" in messages.
+std::vector<std::pair<std::string, std::string>> files_in(const std::string& dir, const std::vector<std::string>& names) {
+  std::vector<std::pair<std::string, std::string>> outputs;
+  for (const std::string& name : names) outputs.emplace_back("--out (" + name + ")", (std::filesystem::path(dir) / name).string());
+  return outputs;
+}
+
+}  // namespace dfvn_cli

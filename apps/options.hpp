@@ -1,0 +1,85 @@
+// The command line's shared pieces: the one-line error, the validators and the options that several
+// subcommands take (apps/*_command.cpp use them; apps/main.cpp assembles the subcommands).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/progress.hpp"
+
+namespace dfvn_cli {
+
+inline constexpr const char* kProgram = "dfvn-sample";
+
+// Every error is one line on stderr: escape_bytes turns any newline or control byte left in the
+// message into a visible escape, so nothing reaches the terminal raw.
+[[noreturn]] void fail(const std::string& message, int code = 1);
+
+// Finite numbers > 0 and >= 0. CLI11's PositiveNumber would print its whole range, DBL_MAX included,
+// and accepts no NaN check.
+extern const CLI::Validator kPositiveFinite;
+extern const CLI::Validator kNonNegativeFinite;
+// A noise frequency in the supported range (noise/noise_domain.hpp); a subnormal one gave Inf.
+extern const CLI::Validator kNoiseFrequency;
+// stats --domain-side: a finite side in [2^-1000, 2^1000] (stats/distance_scale.hpp says why).
+extern const CLI::Validator kDomainSide;
+// CNJ's step scale: (0, 2^20] (sampling/curl_noise_jitter.hpp says why).
+extern const CLI::Validator kStepScale;
+// Digits only, read exactly: CLI11 would take "-1" and "18446744073709551616" as 2^64 - 1 and "" as 0.
+extern const CLI::Validator kUnsignedInteger;
+// --threads: 0 (all cores) or 1..max_thread_count() (core/parallel.hpp).
+extern const CLI::Validator kThreadCount;
+
+// --dim, checked against the dimensions the library instantiates.
+CLI::Option* add_dimension_option(CLI::App& cmd, int& dimension, const std::string& help);
+
+// --noise: the basis of the N-1 noise functions.
+void add_noise_option(CLI::App& cmd, std::string& noise);
+
+// Options that every subcommand shares.
+struct CommonOptions {
+  std::uint64_t seed = 1;
+  int threads = 0;
+};
+
+void add_threads_option(CLI::App& app, int& threads);
+void add_common_options(CLI::App& app, CommonOptions& common);
+
+// Progress on stderr: --progress and -q/--quiet, shared by the subcommands that run long.
+struct ProgressOptions {
+  std::string mode = "auto";
+  bool quiet = false;
+
+  void add_to(CLI::App& app);
+  // A reporter on stderr; `stages`: how many stages the run reports (0: unknown).
+  dfvn::ProgressReporter* make(int stages = 0);
+
+ private:
+  std::optional<dfvn::ProgressReporter> reporter_;
+};
+
+// The outputs of a reproduction: its files in `dir`, each named as "--out (table1.csv)" in messages.
+std::vector<std::pair<std::string, std::string>> files_in(const std::string& dir, const std::vector<std::string>& names);
+
+// A subcommand's options and its run: alive from its registration (add_*_command) to the end of main.
+struct Subcommand {
+  virtual ~Subcommand() = default;
+};
+// A Command (a Subcommand with add_to(app), which registers its options and its run) made and registered.
+template <typename Command>
+std::unique_ptr<Subcommand> registered(CLI::App& app) {
+  auto command = std::make_unique<Command>();
+  command->add_to(app);
+  return command;
+}
+std::unique_ptr<Subcommand> add_sample_command(CLI::App& app);
+std::unique_ptr<Subcommand> add_field_command(CLI::App& app);
+std::unique_ptr<Subcommand> add_reproduce_command(CLI::App& app);
+std::unique_ptr<Subcommand> add_stats_command(CLI::App& app);
+
+}  // namespace dfvn_cli

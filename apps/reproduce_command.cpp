@@ -1,0 +1,235 @@
+// dfvn-sample reproduce: table1, table2, cnj-study and integration (reproduce/).
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "core/dimension.hpp"
+#include "io/atomic_file.hpp"
+#include "io/markdown_text.hpp"
+#include "plot/gnuplot.hpp"
+#include "reproduce/cnj_study.hpp"
+#include "reproduce/integration.hpp"
+#include "reproduce/reproduce.hpp"
+
+#include "options.hpp"
+
+namespace dfvn_cli {
+namespace {
+
+struct ReproduceCommand : Subcommand {
+  CommonOptions common1, common2, common3, common4;
+  dfvn::IntegrationConfig integration;
+  std::string integration_dims = "3-7";
+  std::string integration_methods = "cnj,jitter,pds,sobol,random,halton,lhs";
+  std::string out1 = "out/table1", out2 = "out/table2";
+  std::string dims = "3-7", study_dims = "3-7";
+  dfvn::CnjStudyConfig study;
+  std::string study_lattice = "interior";
+  std::vector<std::string> study_bases = {"simplex", "turning-bands"};
+  dfvn::WarpConfig warp{.width = 384, .height = 216};
+  dfvn::Table2Config table2;
+  std::string setting = "shader";
+  double frequency = 0.0, field_magnitude = 0.0;  // 0: the setting's
+  CLI::Option* second_width_option = nullptr;
+  std::string table1_noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
+  ProgressOptions progress;
+  int table1_realizations = dfvn::Table1Config{}.realizations;
+
+  void add_to(CLI::App& parent) {
+    CLI::App* cmd = parent.add_subcommand("reproduce", "Regenerate the paper's tables and figures, ours beside the paper's.");
+    cmd->require_subcommand(1);
+    cmd->footer("Subcommands: table1, table2 ('dfvn-sample reproduce table1 --help').");
+    CLI::App* t1 = cmd->add_subcommand(
+        "table1",
+        "Table 1 and Figure 4: CNJ, jittering, Poisson disk and Sobol point sets in 3D-7D under the paper protocol.\n"
+        "Writes DIR/table1.csv, DIR/rdf.csv, DIR/table1.md and (with gnuplot) DIR/figure4.png; prints table1.md as plain text.");
+    t1->add_option("--out", out1, "Output directory")->capture_default_str();
+    t1->add_option("--dims", dims, "Dimensions: a range or list within 3..7, e.g. 3-7 or 3,5")->capture_default_str();
+    t1->add_option("--realizations", table1_realizations,
+                   "Realizations R (seeds s..s+R-1); cells are mean +- sd over them (each about 100 s for 3D-7D on 2 cores)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1000));
+    add_noise_option(*t1, table1_noise);  // the CNJ column; the simplex column is always shown beside it
+    progress.add_to(*t1);
+    add_common_options(*t1, common1);
+    t1->callback([this] { run_table1(); });
+
+    CLI::App* t2 = cmd->add_subcommand(
+        "table2",
+        "Table 2 and Figure 5: warp a wave image along 2D DFVN for t = 0.5 with Euler and RK4, 64 and 512 steps, 0, 1\n"
+        "and 10 Newton reprojection steps, against 2048 RK4 steps; RMSE from float values at two resolutions; Figure 5's\n"
+        "top row at several times t with 1000 RK4 steps. Writes DIR/table2.csv, DIR/table2.md, DIR/timeline.csv, the\n"
+        "images as PNG and (with gnuplot) DIR/figure5.png; prints table2.md as plain text.");
+    t2->add_option("--out", out2, "Output directory")->capture_default_str();
+    t2->add_option("--setting", setting,
+                   "shader: the paper's shader (2D quintic gradient noise, noise_scale 7, its unnormalised field\n"
+                   "magnitude 7 sigma = 5.049 widths per unit time, t = 0.5, its wave-band image); ours: simplex noise,\n"
+                   "3 cycles per width, RMS |c| = 1, sine stripes (the earlier default)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"shader", "ours"}));
+    t2->add_option("--width", warp.width, "Image width in pixels")->capture_default_str()->check(CLI::Range(2, 20000));
+    t2->add_option("--height", warp.height, "Image height in pixels")->capture_default_str()->check(CLI::Range(2, 20000));
+    second_width_option = t2->add_option("--second-width", table2.second_width,
+                   "Width of the second resolution (same aspect ratio) at which every RMSE is measured again; 0 = none;\n"
+                   "default: half of --width (none when that is below 2 pixels a side)")
+        ->check(CLI::Range(0, 20000));
+    t2->add_option("--samples", warp.samples, "Samples per pixel, a perfect square (m x m sub-pixel grid, averaged)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({1, 4, 9, 16, 25, 36, 49, 64}));
+    t2->add_option("--frequency", frequency,
+                   "Noise frequency in cycles per image width (one cycle = 2 pi / k_eff); default: the setting's\n"
+                   "(shader: 7 k_eff / (2 pi) = 4.562, ours: 3)")
+        ->check(kNoiseFrequency);
+    t2->add_option("--field-magnitude", field_magnitude,
+                   "RMS speed of the field in image widths per unit time, in [1e-6, 1e6]; default: the setting's\n"
+                   "(shader: 5.049, ours: 1)")
+        ->check(CLI::Range(1e-6, 1e6));
+    progress.add_to(*t2);
+    add_common_options(*t2, common2);
+    t2->callback([this] { run_table2(); });
+
+    CLI::App* s = cmd->add_subcommand(
+        "cnj-study",
+        fmt::format(
+            "CNJ (each noise basis) against random jitter over noise frequencies 0.1, 0.2, 0.35, 0.5, 1 cycles per\n"
+            "spacing, step scales 0.2, 0.35, 0.5 and 1 or {} integration steps, compared at equal RMS displacement,\n"
+            "neighbour disorder and lattice order (--lattice interior: interior points of a K^N lattice, nothing\n"
+            "dropped; --lattice paper: Table 1's lattice, points leaving [0,1]^N dropped as the paper does). Writes\n"
+            "DIR/cnj_study.csv, DIR/cnj_study_jitter.csv, DIR/cnj_study.md and (with gnuplot) DIR/cnj_study.png;\n"
+            "prints the Markdown as plain text.\n"
+            "The CNJ defaults come from this study's rule (data/cnj_defaults.md).",
+            dfvn::kFreeFieldSteps));
+    s->add_option("--out", study.out_dir, "Output directory")->capture_default_str();
+    s->add_option("--dims", study_dims, "Dimensions: a range or list within 3..7, e.g. 3-7 or 3,5")->capture_default_str();
+    s->add_option("--seeds", study.seeds, "Seeds per cell (--seed, --seed + 1, ...)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1000));
+    s->add_option("--lattice", study_lattice,
+                  "interior (the study's cell-centred lattice, statistics over interior sites) or paper (Table 1's "
+                  "lattice linspace(0.05, 0.95, K), leaving points dropped)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"interior", "paper"}));
+    s->add_option("--noises", study_bases, "Comma list of noise bases to study")->delimiter(',')->capture_default_str();
+    s->add_option("--frequencies", study.frequencies, "Comma list of noise frequencies, cycles per lattice spacing")
+        ->delimiter(',')
+        ->capture_default_str();
+    s->add_option("--step-scales", study.step_scales, "Comma list of step scales C (t = C dbar(N) spacing)")
+        ->delimiter(',')
+        ->capture_default_str();
+    s->add_option("--steps", study.steps,
+                  fmt::format("Comma list of integration steps M per trace (RK4 steps of t / M, each followed by\n"
+                              "the reprojection; Section 5.1 takes 1, the free field's default is {})",
+                              dfvn::kFreeFieldSteps))
+        ->delimiter(',')
+        ->capture_default_str()
+        ->check(CLI::Range(1, dfvn::CnjOptions::kMaxSteps));
+    progress.add_to(*s);
+    add_common_options(*s, common3);
+    s->callback([this] { run_cnj_study(); });
+    add_integration(cmd);
+  }
+
+  void run_cnj_study() {
+    study.dimensions = dfvn::parse_dimension_list(study_dims);
+    study.lattice = dfvn::parse_study_lattice(study_lattice);
+    study.bases.clear();
+    for (const std::string& name : study_bases) study.bases.push_back(dfvn::parse_noise_basis(name));
+    study.seed = common3.seed;
+    study.threads = common3.threads;
+    study.validate();
+    dfvn::check_figure_prerequisites();  // before the output folder is made
+    dfvn::check_outputs(files_in(study.out_dir, dfvn::cnj_study_output_files()), {study.out_dir});
+    dfvn::ProgressReporter* reporter = progress.make();
+    const auto result = dfvn::run_cnj_study(study, reporter->callback());
+    reporter->complete();
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_cnj_study(result, log)).c_str(), stdout);
+  }
+
+  void add_integration(CLI::App* cmd) {
+    CLI::App* t3 = cmd->add_subcommand(
+        "integration",
+        "Section 6.1's open question: integrate Genz's six test families with every method's point sets in 3D-7D, at\n"
+        "several sizes, over R realizations. Writes DIR/integration.csv, DIR/integration_slopes.csv, DIR/integration.md\n"
+        "(tables and a reading) and (with gnuplot) DIR/integration_<N>d.png; prints integration.md as plain text.");
+    t3->add_option("--out", integration.out_dir, "Output directory")->capture_default_str();
+    t3->add_option("--dims", integration_dims, "Dimensions: a range or list within 3..7")->capture_default_str();
+    t3->add_option("--realizations", integration.realizations, "Realizations R (seeds s..s+R-1); at least 16 for the reading")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 100000));
+    t3->add_option("--max-points", integration.max_points, "Largest lattice K^N per dimension")
+        ->capture_default_str()
+        ->check(CLI::Range(64, 1 << 24));
+    t3->add_option("--methods", integration_methods, "Comma list of methods")->capture_default_str();
+    progress.add_to(*t3);
+    add_common_options(*t3, common4);
+    t3->callback([this] { run_integration(); });
+  }
+
+  void run_integration() {
+    integration.dimensions = dfvn::parse_dimension_list(integration_dims);
+    integration.seed = common4.seed;
+    integration.threads = common4.threads;
+    integration.methods.clear();
+    for (const auto& name : CLI::detail::split(integration_methods, ','))
+      integration.methods.push_back(dfvn::parse_method(CLI::detail::trim_copy(name)));
+    integration.validate();
+    dfvn::check_figure_prerequisites();  // before the output folder is made
+    dfvn::check_outputs(files_in(integration.out_dir, dfvn::integration_output_files(integration)), {integration.out_dir});
+    dfvn::ProgressReporter* reporter = progress.make();
+    const auto result = dfvn::run_integration(integration, reporter->callback());
+    reporter->complete();
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_integration(result, log)).c_str(), stdout);
+  }
+
+  static void log(const std::string& line) { std::fprintf(stderr, "%s: %s\n", kProgram, line.c_str()); }
+
+  void run_table1() {
+    dfvn::Table1Config config;
+    config.dimensions = dfvn::parse_dimension_list(dims);
+    config.cnj.noise = dfvn::parse_noise_basis(table1_noise);
+    config.seed = common1.seed;
+    config.threads = common1.threads;
+    config.out_dir = out1;
+    config.realizations = table1_realizations;
+    config.validate();
+    dfvn::check_figure_prerequisites();  // before the output folder is made
+    dfvn::check_outputs(files_in(out1, dfvn::table1_output_files()), {out1});
+    dfvn::ProgressReporter* reporter = progress.make();
+    const auto result = dfvn::run_table1(config, reporter->callback());
+    reporter->complete();
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_table1(config, result, log)).c_str(), stdout);
+  }
+
+  void run_table2() {
+    table2.setting = dfvn::parse_warp_setting(setting);
+    dfvn::WarpConfig& config = table2.warp;
+    config = dfvn::warp_config(table2.setting);
+    config.width = warp.width;
+    config.height = warp.height;
+    config.samples = warp.samples;
+    if (frequency > 0.0) config.frequency = frequency;
+    if (field_magnitude > 0.0) config.field_magnitude = field_magnitude;
+    if (second_width_option->count() == 0) {
+      const int half = config.width / 2;
+      table2.second_width = (half >= 2 && static_cast<long long>(half) * config.height / config.width >= 2) ? half : 0;
+    }
+    config.seed = common2.seed;
+    config.threads = common2.threads;
+    table2.validate();
+    dfvn::check_figure_prerequisites();  // before the output folder is made
+    dfvn::check_outputs(files_in(out2, dfvn::table2_output_files(table2)), {out2});
+    dfvn::ProgressReporter* reporter = progress.make();
+    const auto result = dfvn::run_table2(table2, reporter->callback());
+    reporter->complete();
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_table2(out2, result, log)).c_str(), stdout);
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Subcommand> add_reproduce_command(CLI::App& app) { return registered<ReproduceCommand>(app); }
+
+}  // namespace dfvn_cli

@@ -1,0 +1,310 @@
+// dfvn-sample sample: the main job (experiment/experiment.hpp), its options and its files.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/repeats.hpp"
+#include "core/seeds.hpp"
+#include "experiment/experiment.hpp"
+#include "experiment/json_report.hpp"
+#include "experiment/realizations.hpp"
+#include "io/atomic_file.hpp"
+#include "io/point_file.hpp"
+
+#include "options.hpp"
+
+namespace dfvn_cli {
+namespace {
+
+struct SampleCommand : Subcommand {
+  CommonOptions common;
+  ProgressOptions progress;
+  dfvn::SampleConfig config;
+  std::string methods = "cnj,jitter-matched,jitter,pds,sobol";
+  std::string protocol = "paper";
+  std::string knn = "nanoflann";
+  std::string integrator = "rk4";
+  std::string noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
+  std::string reproject = "gauss-newton";
+  std::string scramble = "owen";
+  std::string stats_path = "-";
+  std::string rdf_path;
+  std::string points_dir;
+  std::string json_path;
+  std::string format = "csv";
+  std::string domain{dfvn::to_string(dfvn::kDefaultCnjDomain)};
+  std::string domain_mode = "conformant";
+  std::string bound = "eq13";
+  CLI::Option* bound_options[2] = {};  // --bound, --boundary-width: only where CNJ meets a boundary
+  CLI::Option* domain_option = nullptr;
+  std::string on = "none";
+  CLI::Option* methods_option = nullptr;
+  std::uint64_t count = 0;
+  int realizations = 1;
+  bool no_stats = false;
+  bool no_timing = false;
+  CLI::Option* stats_option = nullptr;
+  CLI::Option* format_option = nullptr;
+
+  void add_to(CLI::App& parent) {
+    CLI::App* cmd = parent.add_subcommand(
+        "sample",
+        "Jitter a K^N lattice along the DFVN field (curl noise jittering, Section 5.1) and compare it with\n"
+        "random jitter, Poisson disk sampling and Sobol points by nearest-neighbour statistics (CSV).\n"
+        "This is the main job: 'dfvn-sample --dim 7 --grid 6' (any options) runs it. Other subcommands:\n"
+        "field, stats, reproduce ('dfvn-sample --help'); each has --help.");
+    add_dimension_option(*cmd, config.dimension, "Dimension N (2..8)")->capture_default_str();
+    CLI::Option* grid_option = cmd->add_option("--grid", config.grid, "Lattice points per axis K (>= 2); K^N points")
+                                   ->capture_default_str()
+                                   ->check(CLI::Range(2, 1 << 30));
+    cmd->add_option("-n,--count", count,
+                    "Points per set instead of --grid: the lattice methods (cnj, jitter) use the K whose K^N is\n"
+                    "nearest (the grid column says which), the others make exactly COUNT (Sobol warns unless it is a\n"
+                    "power of 2; PDS reports when it saturates first)")
+        ->check(CLI::Range(std::uint64_t{2}, std::uint64_t{1} << 40))
+        ->excludes(grid_option);
+    methods_option =
+        cmd->add_option("--methods", methods,
+                        "Comma list of cnj, jitter-matched (jitter moved as far as CNJ: its RMS displacement, on CNJ's\n"
+                        "lattice and domain), jitter (the protocol's fixed half-width), pds, sobol, random, halton\n"
+                        "(scrambled unless --scramble none), lhs; with --on sphere: cnj,random")
+            ->capture_default_str();
+    cmd->add_option("--protocol", protocol,
+                    "paper: Section 5.1 as the paper ran it (lattice linspace(0.05, 0.95, K), jitter +-0.05, PDS\n"
+                    "radius 0.1 and Sobol on [0, 0.1K]^N, Sobol count 2^round(log2 K^N)); unit: every method in\n"
+                    "[0,1]^N at the density of a cell-centred K^N lattice (jitter +-1/(2K), PDS radius 1/K)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"paper", "unit"}));
+    stats_option = cmd->add_option("-o,--stats", stats_path, "Statistics CSV ('-' = standard output)")->capture_default_str();
+    cmd->add_option("--rdf", rdf_path, "Also compute radial distribution functions and write them here (CSV: dim,method,r,g)");
+    cmd->add_option("--rdf-max", config.rdf.r_max, "Largest r of the RDF; 0 = 2.5 mean spacings")
+        ->capture_default_str()
+        ->check(kNonNegativeFinite);
+    cmd->add_option("--rdf-bins", config.rdf.bins, "Number of RDF bins")->capture_default_str()->check(CLI::Range(1, 100000));
+    cmd->add_option("--rdf-queries", config.rdf.max_queries,
+                    "RDF query points: a seeded subset of about this many (0 = all points)")
+        ->capture_default_str()
+        ->check(kUnsignedInteger);
+    cmd->add_option("--points", points_dir,
+                    "Write each point set to DIR/<method>.<format>; '-' = standard output (one method only)");
+    format_option = cmd->add_option("--format", format,
+                                    "Point file format (with --points): csv (header x0..x{N-1}), npy (float64, (points, N))\n"
+                                    "or dat (coordinates separated by spaces, no header: UTK's and pbrt's pspec text format)")
+                        ->capture_default_str()
+                        ->check(CLI::IsMember({"csv", "npy", "dat"}));
+    cmd->add_flag("--no-stats", no_stats, "Generate the point sets only (needs --points): no statistics and no stats CSV");
+    cmd->add_option("--json", json_path,
+                    "Also write the run as JSON: parameters, every method's statistics and derived values ('-' = standard\n"
+                    "output)");
+    cmd->add_flag("--no-timing", no_timing,
+                  "Leave the seconds columns empty (and out of --json): two runs with the same seed give identical files");
+    cmd->add_option("--knn", knn, "KD-tree backend: nanoflann or flann (identical distances)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"nanoflann", "flann"}));
+    cmd->add_option("--integrator", integrator, "CNJ integrator: euler or rk4")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"euler", "rk4"}));
+    cmd->add_option("--steps", config.cnj.trace.steps,
+                    fmt::format("CNJ integration steps M (steps of t / M, each followed by the reprojection); 0 = the\n"
+                                "domain's: {} in the free field (--domain torus, --domain-mode drop), 1 in the bounded\n"
+                                "one (conformant cube or ball, and --on sphere) (data/cnj_defaults.md,\n"
+                                "data/cnj_steps_main_job.md)",
+                                dfvn::kFreeFieldSteps))
+        ->capture_default_str()
+        ->check(CLI::Range(0, dfvn::CnjOptions::kMaxSteps));
+    cmd->add_option("--step-scale", config.cnj.step_scale,
+                    "CNJ trace time t = C * dbar(N) * lattice spacing, dbar the mean distance to the 3^N-1 "
+                    "lattice neighbours (Section 5.1); RMS |c| = 1, so t is the RMS move; at most 2^20")
+        ->capture_default_str()
+        ->check(kStepScale);
+    cmd->add_option("--frequency", config.cnj.frequency,
+                    "CNJ noise frequency in cycles per lattice spacing (one cycle = 2 pi / k_eff of the basis); the\n"
+                    "field's, this / spacing, must be in [2^-50, 2^50]")
+        ->capture_default_str()
+        ->check(kNoiseFrequency);
+    add_noise_option(*cmd, noise);
+    cmd->add_option("--reproject", reproject, "CNJ reprojection after each step: none, newton (Eq. 12), gauss-newton (Eq. 10-11)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"none", "newton", "gauss-newton"}));
+    domain_option = cmd->add_option("--domain", domain,
+                                    "Where CNJ's points stay: torus ([0,1)^N with opposite faces identified: a periodic\n"
+                                    "field, wrapped traces, the cell-centred lattice; no boundary at all), cube ([0,1]^N)\n"
+                                    "or ball (its inscribed ball; the lattice clipped to it). Not given: torus, or cube\n"
+                                    "when --domain-mode drop, --bound or --boundary-width asks for a boundary")
+                        ->capture_default_str()
+                        ->check(CLI::IsMember({"torus", "cube", "ball"}));
+    bound_options[0] = cmd->add_option("--bound", bound,
+                                       "How CNJ's field meets the boundary of --domain cube or ball (conformant): eq13\n"
+                                       "(the paper's Eq. 13) or ramp (Bridson et al. 2007's ramp of the noise)")
+                           ->capture_default_str()
+                           ->check(CLI::IsMember({"eq13", "ramp"}));
+    bound_options[1] =
+        cmd->add_option("--boundary-width", config.cnj.boundary_width,
+                        "The bound's transition width in lattice spacings (Eq. 13's alpha goes from 0 to 1 over it, the\n"
+                        "ramp's d0), at most a quarter of the cube's side")
+            ->capture_default_str()
+            ->check(kPositiveFinite);
+    cmd->add_flag("--periodic", config.periodic_statistics,
+                  "Measure every set on the torus of its box: minimum-image nearest-neighbour distances and RDF\n"
+                  "(off: Euclidean distances in the box, as the paper measures)");
+    cmd->add_option("--domain-mode", domain_mode,
+                    "conformant: CNJ along the field bounded by the domain (Eq. 13), no point leaves; drop: the\n"
+                    "free field, points that leave are dropped (the paper's protocol; reproduce table1 uses it)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"conformant", "drop"}));
+    cmd->add_option("--on", on,
+                    "sphere: methods cnj (traced with f_1 = |x|^2) and random on the unit sphere S^{N-1}, N >= 3,\n"
+                    "from the K^N lattice on [-1,1]^N within half a spacing of it, projected; geodesic statistics")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"none", "sphere"}));
+    cmd->add_option("--reproject-iters", config.cnj.trace.reproject_iterations, "CNJ reprojection iterations R at most")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1000));
+    cmd->add_option("--pds-radius", config.pds_radius, "Poisson disk radius; 0 = the protocol's (paper 0.1, unit 1/K)")
+        ->capture_default_str()
+        ->check(kNonNegativeFinite);
+    cmd->add_option("--pds-candidates", config.pds_candidates, "Poisson disk candidates per active point (Bridson's k)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100000));
+    cmd->add_option("--scramble", scramble, "Sobol scrambling: owen (hash-based, keyed by the seed) or none; halton: digit permutations or none")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"owen", "none"}));
+    cmd->add_option("--max-memory", config.max_memory_gib, "Memory limit in GiB for the point sets; 0 = 80% of the machine's")
+        ->capture_default_str()
+        ->check(kNonNegativeFinite);
+    cmd->add_option("--realizations", realizations,
+                    "Run seeds s..s+R-1 and add per method the mean and sd of every statistic (rows seed = mean, sd)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100000));
+    progress.add_to(*cmd);
+    add_common_options(*cmd, common);
+    cmd->callback([this] { run(); });
+  }
+
+  void run() {
+    config.seed = common.seed;
+    config.threads = common.threads;
+    config.protocol = dfvn::parse_protocol(protocol);
+    config.knn = dfvn::parse_knn_backend(knn);
+    config.scramble = dfvn::parse_scramble(scramble);
+    config.cnj.trace.integrator = dfvn::parse_integrator(integrator);
+    config.cnj.noise = dfvn::parse_noise_basis(noise);
+    config.cnj.trace.reprojection = dfvn::parse_reprojection(reproject);
+    // Options that only mean something at a boundary put CNJ in the cube when no domain is named.
+    const bool asks_for_a_boundary =
+        domain_mode == "drop" || bound_options[0]->count() > 0 || bound_options[1]->count() > 0;
+    if (domain_option->count() == 0 && asks_for_a_boundary) domain = "cube";
+    config.cnj.domain = dfvn::parse_cnj_domain(domain);
+    config.cnj.domain_mode = dfvn::parse_domain_mode(domain_mode);
+    config.cnj.bound = dfvn::parse_bound(bound);
+    for (const CLI::Option* option : bound_options)
+      if (option->count() > 0 &&
+          (config.cnj.domain == dfvn::CnjDomain::torus || config.cnj.domain_mode == dfvn::DomainMode::drop))
+        throw std::invalid_argument(option->get_name() + " applies to conformant CNJ in --domain cube or ball; " +
+                                    (config.cnj.domain == dfvn::CnjDomain::torus ? "the torus has no boundary"
+                                                                                  : "drop mode traces the free field"));
+    config.on = dfvn::parse_surface(on);
+    if (config.on == dfvn::Surface::sphere && methods_option->count() == 0) methods = "cnj,random";
+    config.methods.clear();
+    for (const auto& name : CLI::detail::split(methods, ',')) {
+      config.methods.push_back(dfvn::parse_method(CLI::detail::trim_copy(name)));
+      if (const auto repeat = dfvn::first_repeat(config.methods))  // before the next name is parsed, as it is read
+        throw std::invalid_argument("--methods names '" + std::string(dfvn::to_string(*repeat)) + "' twice");
+    }
+    if (count > 0) {
+      config.count = count;
+      config.grid = dfvn::grid_for_count(config.dimension, count);
+    }
+    config.compute_statistics = !no_stats;
+    config.compute_rdf = !rdf_path.empty();
+    config.validate();
+    dfvn::check_seed_range(common.seed, static_cast<std::uint64_t>(realizations), "--seed", "--realizations");
+    check_output_options();
+
+    // Check every destination before the work starts; each file is then written whole or not at all.
+    std::vector<std::pair<std::string, std::string>> outputs;
+    if (!no_stats)
+      outputs.emplace_back(stats_option->count() > 0 ? "--stats" : "the statistics (default --stats -)", stats_path);
+    if (!rdf_path.empty()) outputs.emplace_back("--rdf", rdf_path);
+    if (!json_path.empty()) outputs.emplace_back("--json", json_path);
+    if (points_dir == "-") outputs.emplace_back("--points", points_dir);
+    const bool points_to_files = !points_dir.empty() && points_dir != "-";
+    if (points_to_files)
+      for (dfvn::Method m : config.methods) outputs.emplace_back("--points (" + point_file_name(m) + ")", point_file(m));
+    dfvn::check_outputs(outputs, points_to_files ? std::vector<std::string>{points_dir} : std::vector<std::string>{});
+    for (const std::string& warning : dfvn::sampling_warnings(config)) std::fprintf(stderr, "%s: warning: %s\n", kProgram, warning.c_str());
+
+    const dfvn::PointFormat point_format = dfvn::parse_point_format(format);
+    dfvn::ProgressReporter* reporter = progress.make(realizations * dfvn::sampling_stage_count(config));
+    std::string stats = dfvn::stats_csv_header();
+    std::string rdf = dfvn::rdf_csv_header();
+    std::vector<std::string> realization_rows;
+    std::vector<dfvn::SamplingRealization> runs;
+    // Realization r uses seed s + r; every statistic is then summarised as mean and sd per method.
+    for (int realization = 0; realization < realizations; ++realization) {
+      config.seed = common.seed + static_cast<std::uint64_t>(realization);
+      auto results = dfvn::run_sampling(config, false, reporter->callback(), [&](const dfvn::MethodResult& r) {
+        if (!points_dir.empty()) {
+          reporter->finish();  // the live line stays off standard output's terminal
+          dfvn::write_point_file(point_file(r.plan.method), r.points, point_format);
+        }
+      });
+      for (const auto& r : results) {
+        realization_rows.push_back(dfvn::stats_csv_row(config, r, !no_timing));
+        stats += realization_rows.back();
+        realization_rows.back().pop_back();
+        rdf += dfvn::rdf_csv_rows(config, r);
+        if (config.count > 0) {
+          reporter->finish();  // a warning starts on a line of its own
+          report_saturation(r);
+        }
+      }
+      runs.push_back({config.seed, std::move(results)});
+    }
+    reporter->complete();
+    if (realizations > 1)
+      stats += dfvn::realization_summary_rows(stats.substr(0, stats.find('\n')), realization_rows, {"dim", "grid", "method"}, "seed");
+    config.seed = common.seed;
+    if (!json_path.empty()) dfvn::write_file_atomically(json_path, dfvn::sampling_json(config, runs, !no_timing));
+    if (!rdf_path.empty()) dfvn::write_file_atomically(rdf_path, rdf);
+    if (!no_stats) dfvn::write_file_atomically(stats_path, stats);
+  }
+
+  // Options that only make sense together (the outputs themselves: dfvn::check_outputs).
+  void check_output_options() const {
+    if (format_option->count() > 0 && points_dir.empty())
+      throw std::invalid_argument("--format " + format + " applies to --points, which is not given");
+    if (no_stats && points_dir.empty()) throw std::invalid_argument("--no-stats writes only point sets: give --points DIR (or -)");
+    if (no_stats && (stats_option->count() > 0 || !rdf_path.empty() || realizations > 1))
+      throw std::invalid_argument("--no-stats computes no statistics: drop --stats, --rdf and --realizations");
+    if (realizations > 1 && (!points_dir.empty() || !rdf_path.empty()))
+      throw std::invalid_argument("--points and --rdf take one realization; drop them or --realizations");
+    if (points_dir == "-" && config.methods.size() != 1)
+      throw std::invalid_argument(fmt::format("--points - writes one point set to standard output; --methods names {}",
+                                              config.methods.size()));
+  }
+
+  // With -n, PDS that saturated before the count: say so (the saturated column has it in every run).
+  static void report_saturation(const dfvn::MethodResult& r) {
+    if (r.facts.saturated && *r.facts.saturated)
+      std::fprintf(stderr, "%s: warning: pds saturated at %llu of %llu points (radius %g): the domain holds no more\n",
+                   kProgram, static_cast<unsigned long long>(r.point_count),
+                   static_cast<unsigned long long>(r.plan.requested), *r.facts.radius);
+  }
+
+  std::string point_file_name(dfvn::Method m) const { return std::string(dfvn::to_string(m)) + "." + format; }
+  std::string point_file(dfvn::Method m) const {
+    return points_dir == "-" ? points_dir : (std::filesystem::path(points_dir) / point_file_name(m)).string();
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Subcommand> add_sample_command(CLI::App& app) { return registered<SampleCommand>(app); }
+
+}  // namespace dfvn_cli

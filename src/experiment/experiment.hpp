@@ -1,0 +1,141 @@
+// The sampling experiment of Section 5.1: generate the configured point sets and measure them.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/progress.hpp"
+#include "sampling/curl_noise_jitter.hpp"
+#include "sampling/lattice.hpp"
+#include "core/point_set.hpp"
+#include "sampling/sobol.hpp"
+#include "sampling/sphere_jitter.hpp"
+#include "stats/lattice_displacement.hpp"
+#include "stats/nearest_neighbour.hpp"
+#include "stats/radial_distribution.hpp"
+
+namespace dfvn {
+
+struct SampleConfig {
+  int dimension = 7;
+  int grid = 6;
+  std::uint64_t seed = 1;
+  int threads = 0;
+  // The main job's: CNJ, jitter at CNJ's RMS displacement, the paper's fixed jitter, Poisson disk, Sobol.
+  std::vector<Method> methods = {Method::cnj, Method::jitter_matched, Method::jitter, Method::pds, Method::sobol};
+  Protocol protocol = Protocol::paper;
+  KnnBackend knn = KnnBackend::nanoflann;
+  CnjOptions cnj;  // cnj.domain and cnj.domain_mode: where CNJ's points stay and how
+  // sphere: methods cnj and random on the unit sphere S^{N-1} (N >= 3), geodesic statistics.
+  Surface on = Surface::none;
+  double pds_radius = 0.0;  // 0: the protocol's (paper: 0.1; unit: 1/K)
+  int pds_candidates = 30;
+  Scramble scramble = Scramble::owen;
+  bool compute_statistics = true;  // false (--no-stats): generate the sets only
+  bool compute_rdf = false;
+  RdfOptions rdf;  // rdf.periodic follows periodic_statistics
+  // Nearest-neighbour statistics and the RDF with minimum-image distances on the torus of each set's
+  // box (stats/periodic_neighbours.hpp), for every method; off: the Euclidean distances of the box.
+  bool periodic_statistics = false;
+  double max_memory_gib = 0.0;  // 0: 80% of the machine's memory
+  // 0: every method takes the lattice's count (Sobol under the paper protocol: 2^round(log2 K^N)).
+  // Otherwise the methods without a lattice (pds, sobol, random, halton, lhs) are asked for exactly
+  // this many points, and `grid` should be grid_for_count(dimension, count) (sampling/lattice.hpp).
+  std::uint64_t count = 0;
+
+  // Throws std::invalid_argument with a message naming the option, including when the point sets
+  // would not fit in memory (saying how much they need and how to override).
+  void validate() const;
+
+  LatticeSpec lattice() const { return {dimension, grid, protocol}; }
+};
+
+// What the user should know before the run: Sobol asked for a count that is not a power of two (its
+// balance properties need 2^m points, as SciPy warns), a -n count that the lattice methods cannot
+// match exactly. One line each, without the program's name.
+std::vector<std::string> sampling_warnings(const SampleConfig& config);
+
+// Stages a run_sampling call reports (generation, statistics, RDF per method), for a [k/n] counter.
+int sampling_stage_count(const SampleConfig& config);
+
+// What one method is asked for under the configured protocol.
+struct MethodPlan {
+  Method method;
+  std::uint64_t requested = 0;  // points asked for (PDS may place fewer, CNJ may drop some)
+  Box domain;
+  double pds_radius = 0.0;
+};
+MethodPlan plan_method(const SampleConfig& config, Method method);
+
+// Bytes the largest point set and its statistics need at the peak (about).
+double estimated_peak_bytes(const SampleConfig& config);
+
+// Facts of how a set was made, each in the unit of the option it comes from; empty where the method
+// has no such thing.
+struct GenerationFacts {
+  std::optional<double> frequency;        // cnj: noise cycles per lattice spacing (--frequency)
+  std::optional<double> field_frequency;  // cnj: the field's cycles per unit length, frequency / spacing
+  std::optional<double> trace_time;       // cnj: t = step_scale * dbar(N) * spacing, length units
+  std::optional<std::uint64_t> dropped;   // cnj: points that left [0,1]^N
+  std::optional<std::uint64_t> skipped_updates;  // cnj: reprojection updates rejected
+  std::optional<std::uint64_t> retraced;      // cnj: traces repeated with finer steps to stay in the domain
+  std::optional<std::uint64_t> kept_at_site;  // cnj: points left at their site when no retrace stayed inside
+  std::optional<double> half_width;       // jitter: the offset's half-width, length units
+  std::optional<double> radius;           // pds: the disk radius, length units
+  std::optional<bool> saturated;          // pds: the active list emptied before `requested` points
+};
+
+struct MethodResult {
+  MethodPlan plan;
+  PointSet points;
+  std::uint64_t point_count = 0;  // points.size() after generation (kept when the points are released)
+  GenerationFacts facts;
+  bool measured = false;  // `nearest` holds statistics (false with compute_statistics off)
+  NearestNeighbourSummary nearest;
+  // Lattice methods (cnj, jitter): how far points moved from their sites (every traced point).
+  std::optional<LatticeDisplacementSummary> displacement;
+  std::optional<RdfCurve> rdf;
+  double seconds_generate = 0.0;
+  double seconds_stats = 0.0;
+  std::string notes;  // words only: the noise basis, the scrambling, why PDS stopped
+};
+
+// What a run keeps from one method for the next: CNJ's RMS displacement, which jitter-matched
+// reaches (jitter-matched runs CNJ itself, without keeping its points, when CNJ has not run yet).
+struct SamplingContext {
+  std::optional<double> cnj_rms_displacement;
+};
+
+// Fills result.points, result.notes and (for lattice methods) result.displacement for result.plan.
+void generate_points(const SampleConfig& config, MethodResult& result, SamplingContext& context,
+                     const StageProgress& progress = {});
+// The same with a context of its own.
+void generate_points(const SampleConfig& config, MethodResult& result, const StageProgress& progress = {});
+
+// One point set of `method` under `config` (config.methods is not consulted): validates, plans and
+// generates exactly as run_sampling does, without the statistics. Keeps the points.
+MethodResult sample_method(const SampleConfig& config, Method method);
+
+// Runs every configured method: generate, then nearest-neighbour statistics (and the RDF if asked).
+// `keep_points`: keep each point set in its result (otherwise it is released after its statistics).
+std::vector<MethodResult> run_sampling(const SampleConfig& config, bool keep_points, const StageProgress& progress = {},
+                                       const std::function<void(const MethodResult&)>& on_result = {});
+
+// CSV text. Stats: one row per method, header dim,grid,method,points,nn_min,nn_q01,nn_median,nn_mean,
+// nn_median_scaled,rms_displacement,median_displacement,frac_unmoved,neighbour_disorder,lattice_order,
+// seconds_generate,seconds_stats,seed,protocol,domain_side,requested,frequency,field_frequency,
+// trace_time,dropped,skipped_updates,half_width,radius,saturated,notes. A column that does not apply
+// is empty: the displacement columns for methods without a lattice (pds, sobol, random, halton, lhs),
+// the GenerationFacts columns for the other methods, the seconds with `timing` off (so that two runs
+// with the same seed give the same bytes). Every real number has a decimal point or an exponent.
+std::string stats_csv_header();
+std::string stats_csv_row(const SampleConfig& config, const MethodResult& result, bool timing = true);
+// RDF: header dim,method,r,g and one row per bin.
+std::string rdf_csv_header();
+std::string rdf_csv_rows(const SampleConfig& config, const MethodResult& result);
+
+}  // namespace dfvn

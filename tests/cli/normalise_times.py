@@ -1,0 +1,53 @@
+#!/usr/bin/python3
+"""Prints a file of tests/cli/test_cli_reference.sh with its times blanked, the one thing allowed to differ
+between two runs of the same command (the reproductions have no --no-timing):
+- CSV (and field --diagnose's row): the columns named seconds* and megapixels_per_second emptied;
+- table1 and table2's Markdown and plain text, which put times in most rows: every number as '#' and runs of spaces (and of dashes) as
+  one (the plain text aligns its columns to the numbers' widths), so the words and the rows are compared (table1.csv and table2.csv hold their numbers, compared above);
+- the other reproductions' Markdown and plain text: 'N s' as '<time>';
+- everything else (PNG, NPY, the other text) byte for byte.
+Usage: normalise_times.py PATH (relative to the folder the commands ran in)."""
+import re
+import sys
+
+TIME_COLUMN = re.compile(r"^(seconds.*|megapixels_per_second)$")
+NUMBER = re.compile(r"\d+(\.\d+)?(e[-+]?\d+)?")
+
+
+def main():
+    path = sys.argv[1].removeprefix("./")
+    data = open(path, "rb").read()
+    name = path.rsplit("/", 1)[-1]
+    if path.endswith(".csv") or name == "field_diagnose.stdout":
+        lines = data.decode().split("\n")
+        header = lines[0].split(",")
+        blank = [i for i, column in enumerate(header) if TIME_COLUMN.match(column)]
+        if blank and '"' not in data.decode():
+            for k in range(1, len(lines)):
+                fields = lines[k].split(",")
+                if len(fields) == len(header):
+                    for i in blank:
+                        fields[i] = ""
+                lines[k] = ",".join(fields)
+        elif blank:  # a quoted field may hold commas: blank from the first unquoted split, by count
+            import csv
+            import io
+            rows = list(csv.reader(io.StringIO(data.decode())))
+            for row in rows[1:]:
+                for i in blank:
+                    if i < len(row):
+                        row[i] = ""
+            out = io.StringIO()
+            csv.writer(out, lineterminator="\n").writerows(rows)
+            sys.stdout.write(out.getvalue())
+            return
+        sys.stdout.write("\n".join(lines))
+    elif path in ("r1/table1.md", "table1.stdout", "r2/table2.md", "table2.stdout"):
+        sys.stdout.write(re.sub(r"-{2,}", "--", re.sub(r"[ \t]+", " ", NUMBER.sub("#", data.decode()))))
+    elif path in ("r3/cnj_study.md", "cnj_study.stdout", "r4/integration.md", "integration.stdout"):
+        sys.stdout.write(re.sub(r"\b\d+(\.\d+)?(e[-+]?\d+)? s\b", "<time>", data.decode()))
+    else:
+        sys.stdout.buffer.write(data)
+
+
+main()
