@@ -21,7 +21,7 @@ namespace {
 // (stats/distance_scale.hpp) or a point outside [0, side]^N.
 PointSet point_set(const PointRows& in, double domain_side) {
   check_domain_side(domain_side, "domain_side");
-  PointSet points{in.dimension, std::vector<double>(in.data, in.data + in.rows * in.dimension), Box{0.0, domain_side}};
+  PointSet points{in.dimension, Coordinates(in.data, in.data + in.rows * in.dimension), Box{0.0, domain_side}};
   check_point_set(points);
   return points;
 }

@@ -25,18 +25,5 @@ py::array_t<double> new_array(std::size_t rows, std::size_t cols) {
   return py::array_t<double>({static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(cols)});
 }
 
-py::array_t<double> array_owning(std::vector<double>&& values, std::size_t rows, std::size_t cols) {
-  auto* owned = new std::vector<double>(std::move(values));
-  py::capsule free_when_done(owned, [](void* p) { delete static_cast<std::vector<double>*>(p); });
-  return py::array_t<double>({static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(cols)}, owned->data(),
-                             free_when_done);
-}
-
-py::array_t<double> array_owning(std::vector<double>&& values) {
-  const std::size_t size = values.size();
-  auto* owned = new std::vector<double>(std::move(values));
-  py::capsule free_when_done(owned, [](void* p) { delete static_cast<std::vector<double>*>(p); });
-  return py::array_t<double>({static_cast<py::ssize_t>(size)}, owned->data(), free_when_done);
-}
 
 }  // namespace dfvn::python

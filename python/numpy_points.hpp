@@ -30,10 +30,25 @@ PointRows point_rows(const PointArray& points, int min_dimension, int max_dimens
 py::array_t<double> new_array(std::size_t rows, std::size_t cols);
 
 // A (rows, cols) float64 array that takes over `values` (rows * cols numbers, row-major) without
-// copying them: the vector is moved into a capsule that the array keeps alive.
-py::array_t<double> array_owning(std::vector<double>&& values, std::size_t rows, std::size_t cols);
+// copying them: the vector (a std::vector or a point set's Coordinates) is moved into a capsule that
+// the array keeps alive.
+template <class Allocator>
+py::array_t<double> array_owning(std::vector<double, Allocator>&& values, std::vector<py::ssize_t> shape) {
+  using Owned = std::vector<double, Allocator>;
+  auto* owned = new Owned(std::move(values));
+  py::capsule free_when_done(owned, [](void* p) { delete static_cast<Owned*>(p); });
+  return py::array_t<double>(std::move(shape), owned->data(), free_when_done);
+}
+template <class Allocator>
+py::array_t<double> array_owning(std::vector<double, Allocator>&& values, std::size_t rows, std::size_t cols) {
+  return array_owning(std::move(values), {static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(cols)});
+}
 
 // A 1-D float64 array that takes over `values`.
-py::array_t<double> array_owning(std::vector<double>&& values);
+template <class Allocator>
+py::array_t<double> array_owning(std::vector<double, Allocator>&& values) {
+  const auto size = static_cast<py::ssize_t>(values.size());
+  return array_owning(std::move(values), std::vector<py::ssize_t>{size});
+}
 
 }  // namespace dfvn::python

@@ -5,8 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
-#include <vector>
-
+#include "core/bulk_memory.hpp"
 #include "core/torus.hpp"
 
 namespace dfvn {
@@ -32,10 +31,11 @@ struct Box {
   }
 };
 
-// points: size() x dimension, row-major.
+// points: size() x dimension, row-major. Coordinates(n) leaves its numbers unwritten (core/bulk_memory.hpp):
+// whoever sizes it writes every one.
 struct PointSet {
   int dimension = 0;
-  std::vector<double> coordinates;
+  Coordinates coordinates;
   Box domain;
   std::size_t size() const { return dimension ? coordinates.size() / dimension : 0; }
   const double* point(std::size_t i) const { return coordinates.data() + i * dimension; }

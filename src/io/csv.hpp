@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/bulk_memory.hpp"
+
 namespace dfvn {
 
 // Bad input data. The message names the line (and column) and the problem.
@@ -19,7 +21,7 @@ class InputError : public std::runtime_error {
 // Points as a row-major table: coordinates.size() == rows * dimension.
 struct PointTable {
   int dimension = 0;
-  std::vector<double> coordinates;
+  Coordinates coordinates;
   std::size_t rows() const { return dimension ? coordinates.size() / dimension : 0; }
   const double* row(std::size_t i) const { return coordinates.data() + i * dimension; }
 };

@@ -291,7 +291,7 @@ std::vector<PointTable> parse_npy(std::string_view bytes) {
     throw InputError(fmt::format("npy: shape {} of dtype '{}' needs {} data bytes, the file has {}", shape, descr,
                                  need_text, available));
   }
-  PointTable table{dimension, std::vector<double>(rows * static_cast<std::uint64_t>(dimension))};
+  PointTable table{dimension, Coordinates(rows * static_cast<std::uint64_t>(dimension))};
   const char* data = bytes.data() + data_start;
   for (std::uint64_t i = 0; i < rows; ++i) {
     for (int k = 0; k < dimension; ++k) {

@@ -212,7 +212,7 @@ CnjStudyResult run_cnj_study(const CnjStudyConfig& config, const StageProgress& 
               options.domain_mode = DomainMode::drop;  // the free field: the study measures interior packing
               const CnjResult cnj = curl_noise_jitter(lattice, options, row.seed, config.threads);
               // Every traced point, inside [0,1]^N or not: x = site + displacement.
-              PointSet moved{n, cnj.displacements, Box{0.0, 1.0}};
+              PointSet moved{n, Coordinates(cnj.displacements.begin(), cnj.displacements.end()), Box{0.0, 1.0}};
               std::vector<double> site(static_cast<std::size_t>(n));
               for (std::size_t i = 0; i < moved.size(); ++i) {
                 lattice.point(i, site.data());

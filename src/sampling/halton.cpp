@@ -56,8 +56,8 @@ PointSet halton_points(int dimension, std::uint64_t count, const Box& domain, bo
   std::vector<std::vector<std::vector<int>>> permutations;
   for (int k = 0; k < dimension; ++k)
     permutations.push_back(scramble ? digit_permutations(halton_base(k), k, seed) : std::vector<std::vector<int>>{});
-  PointSet out{dimension, std::vector<double>(count * static_cast<std::uint64_t>(dimension)), domain};
-#pragma omp parallel for schedule(static) num_threads(resolve_threads(threads))
+  PointSet out{dimension, Coordinates(count * static_cast<std::uint64_t>(dimension)), domain};
+#pragma omp parallel for schedule(static) num_threads(resolve_threads(threads)) if (worth_threads(out.coordinates.size()))
   for (std::int64_t i = 0; i < static_cast<std::int64_t>(count); ++i) {
     for (int k = 0; k < dimension; ++k) {
       const int base = halton_base(k);

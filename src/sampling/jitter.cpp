@@ -18,8 +18,8 @@ PointSet jittered_lattice(const LatticeSpec& lattice, double half_width, std::ui
   const int n = lattice.dimension;
   const auto count = static_cast<std::int64_t>(lattice.point_count());
   const double h = half_width;
-  PointSet out{n, std::vector<double>(static_cast<std::size_t>(count) * n), Box{0.0, 1.0}};
-#pragma omp parallel for schedule(static) num_threads(resolve_threads(threads))
+  PointSet out{n, Coordinates(static_cast<std::size_t>(count) * n), Box{0.0, 1.0}};
+#pragma omp parallel for schedule(static) num_threads(resolve_threads(threads)) if (worth_threads(out.coordinates.size()))
   for (std::int64_t i = 0; i < count; ++i) {
     double* x = out.coordinates.data() + i * n;
     lattice.point(static_cast<std::uint64_t>(i), x);
@@ -36,7 +36,7 @@ std::vector<double> unit_offsets(const LatticeSpec& lattice, std::uint64_t seed,
   const int n = lattice.dimension;
   const auto count = static_cast<std::int64_t>(lattice.point_count());
   std::vector<double> v(static_cast<std::size_t>(count) * n);
-#pragma omp parallel for schedule(static) num_threads(resolve_threads(threads))
+#pragma omp parallel for schedule(static) num_threads(resolve_threads(threads)) if (worth_threads(v.size()))
   for (std::int64_t i = 0; i < count; ++i)
     for (int j = 0; j < n; ++j)
       v[static_cast<std::size_t>(i) * n + j] =
@@ -100,7 +100,7 @@ MatchedJitter jitter_matching_rms(const LatticeSpec& lattice, double rms, Jitter
   if (!(std::abs(displace(a) - rms) <= 1e-12 * rms))
     throw std::invalid_argument(fmt::format("reflected jitter cannot match an RMS displacement of {:g} on this lattice", rms));
   out.half_width = a;
-  out.points = PointSet{n, std::vector<double>(v.size()), Box{0.0, 1.0}};
+  out.points = PointSet{n, Coordinates(v.size()), Box{0.0, 1.0}};
   for (std::size_t k = 0; k < v.size(); ++k) {
     const double x = sites[k] + a * v[k];
     out.points.coordinates[k] = boundary == JitterBoundary::wrap ? x : reflect_into_unit(x);
@@ -110,8 +110,8 @@ MatchedJitter jitter_matching_rms(const LatticeSpec& lattice, double rms, Jitter
 }
 
 PointSet uniform_random_points(int dimension, std::uint64_t count, const Box& domain, std::uint64_t seed, int threads) {
-  PointSet out{dimension, std::vector<double>(count * static_cast<std::uint64_t>(dimension)), domain};
-#pragma omp parallel for schedule(static) num_threads(resolve_threads(threads))
+  PointSet out{dimension, Coordinates(count * static_cast<std::uint64_t>(dimension)), domain};
+#pragma omp parallel for schedule(static) num_threads(resolve_threads(threads)) if (worth_threads(out.coordinates.size()))
   for (std::int64_t i = 0; i < static_cast<std::int64_t>(count); ++i)
     for (int j = 0; j < dimension; ++j)
       out.coordinates[static_cast<std::size_t>(i) * dimension + j] =

@@ -10,10 +10,10 @@
 namespace dfvn {
 
 PointSet latin_hypercube_points(int dimension, std::uint64_t count, const Box& domain, std::uint64_t seed, int threads) {
-  PointSet out{dimension, std::vector<double>(count * static_cast<std::uint64_t>(dimension)), domain};
+  PointSet out{dimension, Coordinates(count * static_cast<std::uint64_t>(dimension)), domain};
   const double stratum = 1.0 / static_cast<double>(count);
   // Axes are independent: one thread per axis, each permutation drawn sequentially.
-#pragma omp parallel for schedule(static) num_threads(resolve_threads(threads))
+#pragma omp parallel for schedule(static) num_threads(resolve_threads(threads)) if (worth_threads(out.coordinates.size()))
   for (int k = 0; k < dimension; ++k) {
     std::vector<std::uint64_t> order(count);
     std::iota(order.begin(), order.end(), std::uint64_t{0});

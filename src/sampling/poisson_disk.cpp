@@ -1,7 +1,6 @@
 #include "sampling/poisson_disk.hpp"
 
 #include <omp.h>
-#include <sys/mman.h>
 
 #include <algorithm>
 #include <atomic>
@@ -15,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/bulk_memory.hpp"
 #include "core/dimension.hpp"
 #include "core/hash.hpp"
 #include "core/parallel.hpp"
@@ -50,12 +50,7 @@ class ZeroedPages {
  public:
   ZeroedPages() = default;
   explicit ZeroedPages(std::size_t count) : bytes_(std::max<std::size_t>(count, 1) * sizeof(T)) {
-    void* p = mmap(nullptr, bytes_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    if (p == MAP_FAILED) throw std::bad_alloc();
-#ifdef MADV_HUGEPAGE
-    madvise(p, bytes_, MADV_HUGEPAGE);  // advice: without huge pages the array works the same
-#endif
-    data_ = static_cast<T*>(p);
+    data_ = static_cast<T*>(map_pages(bytes_));
   }
   ZeroedPages(const ZeroedPages&) = delete;
   ZeroedPages& operator=(ZeroedPages&& other) noexcept {
@@ -64,7 +59,7 @@ class ZeroedPages {
     return *this;
   }
   ~ZeroedPages() {
-    if (data_) munmap(data_, bytes_);
+    release_pages(data_, bytes_);
   }
   T* data() const { return data_; }
 
@@ -725,7 +720,7 @@ class QueueProcess {
   const NormalZiggurat& normal_;
   CellGrid<N> grid_;
   const ProgressTicker ticker_;
-  std::vector<double>& output_;
+  Coordinates& output_;
   StableArray<Point<N>> points_store_;  // written by the committing thread, read by all
   StableArray<Entry> queue_;
   std::unique_ptr<Block<N>[]> blocks_;

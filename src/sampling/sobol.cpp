@@ -259,7 +259,7 @@ PointSet sobol_points(int dimension, std::uint64_t count, const Box& domain, Scr
   const SobolSequence sequence(dimension);
   if (dimension > kMaxDimensions) throw std::logic_error("the Sobol direction table grew: raise kMaxDimensions");
   const auto dims = static_cast<std::size_t>(dimension);
-  PointSet out{dimension, std::vector<double>(count * dims), domain};
+  PointSet out{dimension, Coordinates(count * dims), domain};
   SobolBlocks blocks{sequence, {}, {}};
   const bool owen = scramble == Scramble::owen;
   blocks.walk.resize(static_cast<std::size_t>(SobolSequence::kBits) * SobolBlocks::stride(dims));
@@ -279,10 +279,7 @@ PointSet sobol_points(int dimension, std::uint64_t count, const Box& domain, Scr
   // Blocks of consecutive points are independent, so the points do not depend on the thread count.
   constexpr std::uint64_t kBlock = 4096;
   const auto block_count = static_cast<std::int64_t>((count + kBlock - 1) / kBlock);
-  // Below about 2^16 coordinates (a few hundred microseconds of work) waking a second thread costs more
-  // than it saves: 8192 4D points took 0.8 ms on one thread and 8-17 ms on two while the machine was busy.
-  constexpr std::uint64_t kSerialBelow = std::uint64_t{1} << 16;
-  const bool parallel = count * dims >= kSerialBelow;
+  const bool parallel = worth_threads(count * dims);
 #pragma omp parallel for schedule(static) num_threads(resolve_threads(threads)) if (parallel)
   for (std::int64_t block = 0; block < block_count; ++block) {
     const std::uint64_t begin = static_cast<std::uint64_t>(block) * kBlock;

@@ -55,7 +55,7 @@ static SphereCnjResult sphere_curl_noise_jitter(int grid, const CnjOptions& requ
   result.field_frequency = options.frequency / h;
   const DfvnField<N> field(seed, FieldOptions{options.noise, result.field_frequency, FieldConstraint::on_sphere});
   const PointSet starts = sphere_start_set(N, grid);
-  std::vector<double> ends(starts.coordinates.size());
+  Coordinates ends(starts.coordinates.size());  // trace_table writes every row
   const TracedPoints traced = trace_table<N>(
       field, cnj_trace_options(options), starts.coordinates.data(), starts.size(), ends.data(), result.trace_time,
       [](const Vec<N>& x) { return satisfies_constraint<N>(FieldConstraint::on_sphere, x); }, OnReject::retrace,
@@ -91,7 +91,7 @@ SphereCnjResult sphere_curl_noise_jitter(int dimension, int grid, const CnjOptio
 }
 
 PointSet uniform_points_on_sphere(int dimension, std::uint64_t count, std::uint64_t seed, int threads) {
-  PointSet out{dimension, std::vector<double>(count * static_cast<std::uint64_t>(dimension)), Box{-1.0, 2.0}};
+  PointSet out{dimension, Coordinates(count * static_cast<std::uint64_t>(dimension)), Box{-1.0, 2.0}};
 #pragma omp parallel for schedule(static) num_threads(resolve_threads(threads))
   for (std::int64_t i = 0; i < static_cast<std::int64_t>(count); ++i) {
     double* x = out.coordinates.data() + static_cast<std::size_t>(i) * dimension;

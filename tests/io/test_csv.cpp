@@ -95,11 +95,11 @@ std::string text_error_of(const std::string& text, int dimension) {
 TEST(Csv, ReadsWhitespaceSeparatedPointsAndInfersTheDimension) {
   const PointTable t = read_text("# x0 x1 x2\n1.5e-01 2 3\n\t4  5\t6\n\n", 0);
   EXPECT_EQ(t.dimension, 3);
-  EXPECT_EQ(t.coordinates, (std::vector<double>{0.15, 2, 3, 4, 5, 6}));
-  EXPECT_EQ(read_text("x y\n1 2\n", 0).coordinates, (std::vector<double>{1, 2}));  // a header line
+  EXPECT_EQ(t.coordinates, (Coordinates{0.15, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(read_text("x y\n1 2\n", 0).coordinates, (Coordinates{1, 2}));  // a header line
   const PointTable csv = read_text("x0,x1\n0.5,0.25\n", 0);
   EXPECT_EQ(csv.dimension, 2);
-  EXPECT_EQ(csv.coordinates, (std::vector<double>{0.5, 0.25}));
+  EXPECT_EQ(csv.coordinates, (Coordinates{0.5, 0.25}));
   EXPECT_EQ(read_text("1 2 3\n", 3).dimension, 3);
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/parallel.hpp"
 #include "sampling/halton.hpp"
 #include "sampling/latin_hypercube.hpp"
 
@@ -49,7 +50,12 @@ TEST(Halton, ScrambledPointsKeepTheirStrata) {
   }
 }
 
+// Enough points for the threaded loop (core/parallel.hpp) to run.
 TEST(Halton, DeterministicPerSeedAndIndependentOfThreads) {
+  const std::uint64_t threaded = kParallelFromCoordinates / 5 + 1;
+  const PointSet big = halton_points(5, threaded, Box{0.0, 1.0}, true, 7, 1);
+  ASSERT_TRUE(worth_threads(big.coordinates.size()));
+  EXPECT_EQ(big.coordinates, halton_points(5, threaded, Box{0.0, 1.0}, true, 7, 2).coordinates);
   const PointSet a = halton_points(5, 1000, Box{0.0, 1.0}, true, 7, 1);
   EXPECT_EQ(a.coordinates, halton_points(5, 1000, Box{0.0, 1.0}, true, 7, 4).coordinates);
   EXPECT_NE(a.coordinates, halton_points(5, 1000, Box{0.0, 1.0}, true, 8, 1).coordinates);
@@ -78,6 +84,10 @@ TEST(LatinHypercube, OnePointPerStratumPerAxis) {
 }
 
 TEST(LatinHypercube, DeterministicPerSeedAndIndependentOfThreads) {
+  const std::uint64_t threaded = kParallelFromCoordinates / 6 + 1;
+  const PointSet big = latin_hypercube_points(6, threaded, Box{0.0, 1.0}, 3, 1);
+  ASSERT_TRUE(worth_threads(big.coordinates.size()));
+  EXPECT_EQ(big.coordinates, latin_hypercube_points(6, threaded, Box{0.0, 1.0}, 3, 2).coordinates);
   const PointSet a = latin_hypercube_points(6, 500, Box{0.0, 1.0}, 3, 1);
   EXPECT_EQ(a.coordinates, latin_hypercube_points(6, 500, Box{0.0, 1.0}, 3, 5).coordinates);
   EXPECT_NE(a.coordinates, latin_hypercube_points(6, 500, Box{0.0, 1.0}, 4, 1).coordinates);

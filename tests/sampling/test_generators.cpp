@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/parallel.hpp"
 #include "sampling/curl_noise_jitter.hpp"
 #include "sampling/jitter.hpp"
 #include "sampling/lattice.hpp"
@@ -32,11 +33,13 @@ TEST(Lattice, AverageNeighbourDistance) {
   EXPECT_DOUBLE_EQ(average_neighbour_distance(2), (4.0 + 4.0 * std::sqrt(2.0)) / 8.0);
 }
 
+// 23^4 points: enough coordinates for the threaded loops (core/parallel.hpp).
 TEST(Jitter, StaysInItsCellAndIgnoresThreads) {
-  const LatticeSpec l{4, 5, Protocol::unit};
+  const LatticeSpec l{4, 23, Protocol::unit};
   const PointSet a = jittered_lattice(l, 3, 1), b = jittered_lattice(l, 3, 2);
+  ASSERT_TRUE(worth_threads(a.coordinates.size()));
   EXPECT_EQ(a.coordinates, b.coordinates);
-  ASSERT_EQ(a.size(), 625u);
+  ASSERT_EQ(a.size(), 279841u);
   double lattice[4];
   for (std::size_t i = 0; i < a.size(); ++i) {
     l.point(i, lattice);
@@ -53,6 +56,17 @@ TEST(RandomPoints, UniformInTheDomain) {
     mean += x / static_cast<double>(p.coordinates.size());
   }
   EXPECT_NEAR(mean, 1.0, 0.02);  // standard error 2/sqrt(12 * 90000) = 0.002
+  const PointSet big = uniform_random_points(3, kParallelFromCoordinates / 3 + 1, Box{0.0, 2.0}, 4, 1);
+  ASSERT_TRUE(worth_threads(big.coordinates.size()));
+  EXPECT_EQ(big.coordinates, uniform_random_points(3, kParallelFromCoordinates / 3 + 1, Box{0.0, 2.0}, 4, 2).coordinates);
+}
+
+TEST(MatchedJitter, SameBytesOnOneAndTwoThreadsOnALargeLattice) {
+  const LatticeSpec l{4, 23, Protocol::unit};
+  const MatchedJitter a = jitter_matching_rms(l, 0.3 / 23, JitterBoundary::reflect, 5, 1);
+  const MatchedJitter b = jitter_matching_rms(l, 0.3 / 23, JitterBoundary::reflect, 5, 2);
+  ASSERT_TRUE(worth_threads(a.points.coordinates.size()));
+  EXPECT_EQ(a.points.coordinates, b.points.coordinates);
 }
 
 TEST(CurlNoiseJitter, SameBytesOnOneAndTwoThreads) {

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "core/parallel.hpp"
+
 namespace dfvn {
 namespace {
 
@@ -58,11 +60,12 @@ TEST(Sobol, OwenScramblingKeepsTheNetProperty) {
   }
 }
 
-// 2^15 5D points: enough coordinates (2^16 and more) for sobol_points to use both threads.
+// 2^18 5D points: enough coordinates for sobol_points to use both threads (core/parallel.hpp).
 TEST(Sobol, ScramblingDependsOnTheSeedOnlyAndNotOnThreads) {
-  const PointSet a = sobol_points(5, 1 << 15, Box{0.0, 0.7}, Scramble::owen, 9, 1);
-  const PointSet b = sobol_points(5, 1 << 15, Box{0.0, 0.7}, Scramble::owen, 9, 2);
-  const PointSet c = sobol_points(5, 1 << 15, Box{0.0, 0.7}, Scramble::owen, 10, 2);
+  const PointSet a = sobol_points(5, 1 << 18, Box{0.0, 0.7}, Scramble::owen, 9, 1);
+  const PointSet b = sobol_points(5, 1 << 18, Box{0.0, 0.7}, Scramble::owen, 9, 2);
+  const PointSet c = sobol_points(5, 1 << 18, Box{0.0, 0.7}, Scramble::owen, 10, 2);
+  ASSERT_TRUE(worth_threads(a.coordinates.size()));
   EXPECT_EQ(a.coordinates, b.coordinates);
   EXPECT_NE(a.coordinates, c.coordinates);
   for (double x : a.coordinates) {

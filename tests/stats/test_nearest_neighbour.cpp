@@ -30,7 +30,7 @@ TEST(NearestNeighbour, KdTreesEqualBruteForce) {
 TEST(NearestNeighbour, SummaryOfALattice) {
   // A cell-centred 10^3 lattice: every nearest distance is the spacing 0.1, scaled median 1.
   const LatticeSpec l{3, 10, Protocol::unit};
-  PointSet p{3, std::vector<double>(3000), Box{0.0, 1.0}};
+  PointSet p{3, Coordinates(3000, 0.0), Box{0.0, 1.0}};
   for (std::uint64_t i = 0; i < 1000; ++i) l.point(i, p.coordinates.data() + 3 * i);
   const auto s = summarize_nearest_neighbours(nearest_neighbour_distances(p, KnnBackend::nanoflann, 1), p);
   EXPECT_EQ(s.points, 1000u);

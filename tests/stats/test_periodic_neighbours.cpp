@@ -45,7 +45,7 @@ TEST(PeriodicNeighbours, NeighboursAcrossTheFaces) {
 // A cell-centred lattice is perfectly periodic: every minimum-image distance is the spacing.
 TEST(PeriodicNeighbours, LatticeOnTheTorus) {
   const LatticeSpec l{4, 5, Protocol::unit};
-  PointSet p{4, std::vector<double>(4 * 625), Box{0.0, 1.0}};
+  PointSet p{4, Coordinates(4 * 625, 0.0), Box{0.0, 1.0}};
   for (std::uint64_t i = 0; i < 625; ++i) l.point(i, p.coordinates.data() + 4 * i);
   for (double d : periodic_nearest_neighbour_distances(p, 2)) EXPECT_NEAR(d, 0.2, 1e-12);
 }

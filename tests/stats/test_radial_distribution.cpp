@@ -63,7 +63,7 @@ TEST(RadialDistribution, UniformRandomPointsGiveOne) {
 // The paper's estimator (no factor 2, no edge correction) tends to 0.5 and sags: ours must not.
 TEST(RadialDistribution, LatticeHasNoPairsBelowItsSpacing) {
   const LatticeSpec l{3, 10, Protocol::unit};
-  PointSet p{3, std::vector<double>(3000), Box{0.0, 1.0}};
+  PointSet p{3, Coordinates(3000, 0.0), Box{0.0, 1.0}};
   for (std::uint64_t i = 0; i < 1000; ++i) l.point(i, p.coordinates.data() + 3 * i);
   RdfOptions o;
   o.r_max = 0.2;

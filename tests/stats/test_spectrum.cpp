@@ -81,7 +81,7 @@ TEST(PowerSpectrum, AnisotropyOfAConstantSpectrumIsNotDefined) {
       EXPECT_FALSE(s.anisotropy_db[r].has_value()) << dimension << "D shell " << r << ": " << *s.anisotropy_db[r];
     }
     // Two points half the domain apart along x0: P = 0 at odd k0, 2 at even: variance, defined anisotropy.
-    const PointSet pair{dimension, dimension == 2 ? std::vector<double>{0.1, 0.2, 0.6, 0.2} : std::vector<double>{0.1, 0.2, 0.3, 0.6, 0.2, 0.3}, Box{0.0, 1.0}};
+    const PointSet pair{dimension, dimension == 2 ? Coordinates{0.1, 0.2, 0.6, 0.2} : Coordinates{0.1, 0.2, 0.3, 0.6, 0.2, 0.3}, Box{0.0, 1.0}};
     const PowerSpectrum p = power_spectrum({pair}, 6, 2);
     for (std::size_t r = 1; r < p.radial_mean.size(); ++r) {
       ASSERT_TRUE(p.anisotropy_db[r].has_value()) << dimension << "D shell " << r;
