@@ -33,19 +33,18 @@ namespace {
 
 template <int N>
 std::vector<double> nearest_neighbour_distances_nanoflann(const PointSet& points, int threads, const FractionProgress& progress) {
-  const PointSetAdaptor<N> adaptor{points};
-  KdTree<N> tree(N, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(kKdTreeLeafSize));
-  tree.buildIndex();
-  return neighbour_loop::for_every_point(neighbour_loop::tree_order(tree), threads, progress, [&](std::size_t i) {
+  const LeafOrderedTree<N> ordered(points);
+  const PointSet& rows = ordered.sorted();
+  return neighbour_loop::for_every_point(ordered.original(), threads, progress, [&](std::size_t i) {
     std::uint32_t index[2];
     double dist2[2];
     nanoflann::KNNResultSet<double, std::uint32_t> result(2);
     result.init(index, dist2);
-    tree.findNeighbors(result, points.point(i), nanoflann::SearchParams());
+    ordered.tree().findNeighbors(result, rows.point(i), nanoflann::SearchParams());
     // The point itself is at distance 0, so one of the two results is the nearest other point (or a
     // duplicate, also at 0); take whichever is not i.
     const std::uint32_t other = index[0] == static_cast<std::uint32_t>(i) ? index[1] : index[0];
-    return distance_between(points, i, other);
+    return distance_between(rows, i, other);
   });
 }
 

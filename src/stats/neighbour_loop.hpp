@@ -14,18 +14,15 @@
 
 namespace dfvn::neighbour_loop {
 
-// distances[i] = nearest(i) for every i < count, in chunks of a dynamic schedule; queries done are
-// counted per chunk, and only the first thread reports them. Each slot is written by one query, so the
-// result is the same for any thread count and any order.
-//
-// The points are queried in `order` (a permutation of 0..count-1): a KD-tree's leaf order (tree_order),
-// so that consecutive queries walk the same nodes and leaves and find them in cache. For point sets in
-// no spatial order (Sobol, Poisson disk) this is 2-3x faster than querying by index
-// (bench/results.md); the distances are the same bits.
+// distances[original[k]] = nearest(k) for every row k of a LeafOrderedTree (stats/kd_tree.hpp), in
+// chunks of consecutive rows on a dynamic schedule: the queries go in the tree's leaf order and the
+// results are scattered back to the input's indices. Queries done are counted per chunk, and only the
+// first thread reports them. Each slot is written by one query, so the result is the same for any
+// thread count and any order.
 template <typename Nearest>
-std::vector<double> for_every_point(const std::vector<std::uint32_t>& order, int threads, const FractionProgress& progress,
+std::vector<double> for_every_point(const std::vector<std::uint32_t>& original, int threads, const FractionProgress& progress,
                                     Nearest nearest) {
-  const auto count = static_cast<std::int64_t>(order.size());
+  const auto count = static_cast<std::int64_t>(original.size());
   std::vector<double> distances(static_cast<std::size_t>(count));
   constexpr std::int64_t kChunk = 4096;
   std::atomic<std::uint64_t> queries_done{0};
@@ -35,16 +32,9 @@ std::vector<double> for_every_point(const std::vector<std::uint32_t>& order, int
       const std::uint64_t done = queries_done.fetch_add(static_cast<std::uint64_t>(kChunk), std::memory_order_relaxed);
       if (omp_get_thread_num() == 0) progress(std::min(1.0, static_cast<double>(done) / static_cast<double>(count)));
     }
-    const std::size_t i = order[static_cast<std::size_t>(k)];
-    distances[i] = nearest(i);
+    distances[original[static_cast<std::size_t>(k)]] = nearest(static_cast<std::size_t>(k));
   }
   return distances;
-}
-
-// The points in the order of the tree's leaves (nanoflann keeps it in vAcc after buildIndex).
-template <typename Tree>
-const std::vector<std::uint32_t>& tree_order(const Tree& tree) {
-  return tree.vAcc;
 }
 
 // Every pair once: distance(i, k) for i < k.

@@ -59,11 +59,11 @@ std::vector<double> periodic_distances_1d(const PointSet& points) {
 
 template <int N>
 std::vector<double> periodic_distances_kd_tree(const PointSet& points, int threads, const FractionProgress& progress) {
-  const PointSetAdaptor<N> adaptor{points};
-  KdTree<N> tree(N, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(kKdTreeLeafSize));
-  tree.buildIndex();
+  const LeafOrderedTree<N> ordered(points);
+  const PointSet& rows = ordered.sorted();
+  const auto& tree = ordered.tree();
   const double lo = points.domain.lo, side = points.domain.side;
-  return neighbour_loop::for_every_point(neighbour_loop::tree_order(tree), threads, progress, [&](std::size_t self) {
+  return neighbour_loop::for_every_point(ordered.original(), threads, progress, [&](std::size_t self) {
     double best = std::numeric_limits<double>::infinity();
     // The nearest point other than i to a query position (the point or one of its images); its
     // minimum-image distance decides, so that every image agrees with the brute force to the bit.
@@ -75,11 +75,11 @@ std::vector<double> periodic_distances_kd_tree(const PointSet& points, int threa
       tree.findNeighbors(result, y, nanoflann::SearchParams());
       for (std::size_t r = 0; r < result.size(); ++r)
         if (index[r] != self) {
-          best = std::min(best, periodic_distance_between(points, self, index[r]));
+          best = std::min(best, periodic_distance_between(rows, self, index[r]));
           break;
         }
     };
-    const double* x = points.point(self);
+    const double* x = rows.point(self);
     query(x);
     for_each_periodic_image<N>(x, lo, side, [&] { return best; }, query);
     return best;

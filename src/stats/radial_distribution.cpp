@@ -78,8 +78,7 @@ RdfCurve radial_distribution_impl(const PointSet& points, const RdfOptions& opti
   curve.queries = queries.size();
 
   const PointSetAdaptor<N> adaptor{points};
-  KdTree<N> tree(N, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(kKdTreeLeafSize));
-  tree.buildIndex();
+  const KdTree<N> tree(N, adaptor, kd_tree_params());  // built by its constructor
 
   const int bins = options.bins;
   const double bin_width = curve.r_max / bins;
