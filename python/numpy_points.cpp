@@ -25,5 +25,4 @@ py::array_t<double> new_array(std::size_t rows, std::size_t cols) {
   return py::array_t<double>({static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(cols)});
 }
 
-
 }  // namespace dfvn::python

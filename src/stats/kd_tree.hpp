@@ -28,7 +28,8 @@ using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<
 // Leaf size 10 (nanoflann's default): small leaves suit the k = 2 queries that dominate here.
 inline constexpr int kKdTreeLeafSize = 10;
 
-// Built once: nanoflann's constructor builds the index unless told to skip it.
+// Parameters of a tree that its constructor builds (nanoflann does unless told to skip it; a further
+// buildIndex() would build it a second time).
 inline nanoflann::KDTreeSingleIndexAdaptorParams kd_tree_params(int leaf_size = kKdTreeLeafSize) {
   return nanoflann::KDTreeSingleIndexAdaptorParams(static_cast<std::size_t>(leaf_size));
 }
