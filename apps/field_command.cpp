@@ -9,13 +9,13 @@
 #include <string>
 #include <vector>
 
-#include "core/dimension.hpp"
-#include "core/message_text.hpp"
-#include "field/diagnose.hpp"
-#include "field/evaluate_points.hpp"
-#include "io/atomic_file.hpp"
-#include "io/csv.hpp"
-#include "io/field_csv.hpp"
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/core/message_text.hpp"
+#include "dfvn/field/diagnose.hpp"
+#include "dfvn/field/evaluate_points.hpp"
+#include "dfvn/io/atomic_file.hpp"
+#include "dfvn/io/csv.hpp"
+#include "dfvn/io/field_csv.hpp"
 
 #include "options.hpp"
 

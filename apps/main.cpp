@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "core/message_text.hpp"
-#include "io/atomic_file.hpp"
+#include "dfvn/core/message_text.hpp"
+#include "dfvn/io/atomic_file.hpp"
 #include "options.hpp"
 
 namespace {

@@ -10,12 +10,12 @@
 #include <stdexcept>
 #include <unistd.h>
 
-#include "core/dimension.hpp"
-#include "core/message_text.hpp"
-#include "core/parallel.hpp"
-#include "noise/noise_domain.hpp"
-#include "sampling/curl_noise_jitter.hpp"
-#include "stats/distance_scale.hpp"
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/core/message_text.hpp"
+#include "dfvn/core/parallel.hpp"
+#include "dfvn/noise/noise_domain.hpp"
+#include "dfvn/sampling/curl_noise_jitter.hpp"
+#include "dfvn/stats/distance_scale.hpp"
 
 namespace dfvn_cli {
 

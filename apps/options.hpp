@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/progress.hpp"
+#include "dfvn/core/progress.hpp"
 
 namespace dfvn_cli {
 

@@ -6,13 +6,13 @@
 #include <string>
 #include <vector>
 
-#include "core/dimension.hpp"
-#include "io/atomic_file.hpp"
-#include "io/markdown_text.hpp"
-#include "plot/gnuplot.hpp"
-#include "reproduce/cnj_study.hpp"
-#include "reproduce/integration.hpp"
-#include "reproduce/reproduce.hpp"
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/io/atomic_file.hpp"
+#include "dfvn/io/markdown_text.hpp"
+#include "dfvn/plot/gnuplot.hpp"
+#include "dfvn/reproduce/cnj_study.hpp"
+#include "dfvn/reproduce/integration.hpp"
+#include "dfvn/reproduce/reproduce.hpp"
 
 #include "options.hpp"
 

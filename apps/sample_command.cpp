@@ -8,13 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "core/repeats.hpp"
-#include "core/seeds.hpp"
-#include "experiment/experiment.hpp"
-#include "experiment/json_report.hpp"
-#include "experiment/realizations.hpp"
-#include "io/atomic_file.hpp"
-#include "io/point_file.hpp"
+#include "dfvn/core/repeats.hpp"
+#include "dfvn/core/seeds.hpp"
+#include "dfvn/experiment/experiment.hpp"
+#include "dfvn/experiment/json_report.hpp"
+#include "dfvn/experiment/realizations.hpp"
+#include "dfvn/io/atomic_file.hpp"
+#include "dfvn/io/point_file.hpp"
 
 #include "options.hpp"
 

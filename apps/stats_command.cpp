@@ -8,15 +8,15 @@
 #include <utility>
 #include <vector>
 
-#include "core/point_set.hpp"
-#include "experiment/json_report.hpp"
-#include "experiment/realizations.hpp"
-#include "io/atomic_file.hpp"
-#include "io/point_reader.hpp"
-#include "plot/gnuplot.hpp"
-#include "stats/distance_scale.hpp"
-#include "stats/point_set_statistics.hpp"
-#include "stats/spectrum.hpp"
+#include "dfvn/core/point_set.hpp"
+#include "dfvn/experiment/json_report.hpp"
+#include "dfvn/experiment/realizations.hpp"
+#include "dfvn/io/atomic_file.hpp"
+#include "dfvn/io/point_reader.hpp"
+#include "dfvn/plot/gnuplot.hpp"
+#include "dfvn/stats/distance_scale.hpp"
+#include "dfvn/stats/point_set_statistics.hpp"
+#include "dfvn/stats/spectrum.hpp"
 
 #include "options.hpp"
 

@@ -4,16 +4,16 @@
 
 #include <vector>
 
-#include "core/hash.hpp"
-#include "field/dfvn_field.hpp"
-#include "integrate/trace.hpp"
-#include "noise/simplex_noise.hpp"
-#include "sampling/curl_noise_jitter.hpp"
-#include "sampling/jitter.hpp"
-#include "sampling/lattice.hpp"
-#include "sampling/poisson_disk.hpp"
-#include "sampling/sobol.hpp"
-#include "stats/nearest_neighbour.hpp"
+#include "dfvn/core/hash.hpp"
+#include "dfvn/field/dfvn_field.hpp"
+#include "dfvn/integrate/trace.hpp"
+#include "dfvn/noise/simplex_noise.hpp"
+#include "dfvn/sampling/curl_noise_jitter.hpp"
+#include "dfvn/sampling/jitter.hpp"
+#include "dfvn/sampling/lattice.hpp"
+#include "dfvn/sampling/poisson_disk.hpp"
+#include "dfvn/sampling/sobol.hpp"
+#include "dfvn/stats/nearest_neighbour.hpp"
 
 namespace dfvn {
 namespace {

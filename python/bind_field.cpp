@@ -6,9 +6,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include "core/dimension.hpp"
-#include "field/evaluate_points.hpp"
-#include "integrate/trace_points.hpp"
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/field/evaluate_points.hpp"
+#include "dfvn/integrate/trace_points.hpp"
 #include "numpy_points.hpp"
 
 namespace dfvn::python {

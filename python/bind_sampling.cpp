@@ -6,8 +6,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include "core/dimension.hpp"
-#include "experiment/experiment.hpp"
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/experiment/experiment.hpp"
 #include "numpy_points.hpp"
 
 namespace dfvn::python {

@@ -6,10 +6,10 @@
 
 #include <pybind11/pybind11.h>
 
-#include "core/dimension.hpp"
-#include "stats/distance_scale.hpp"
-#include "stats/point_set_statistics.hpp"
-#include "stats/radial_distribution.hpp"
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/stats/distance_scale.hpp"
+#include "dfvn/stats/point_set_statistics.hpp"
+#include "dfvn/stats/radial_distribution.hpp"
 #include "numpy_points.hpp"
 
 namespace dfvn::python {

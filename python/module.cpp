@@ -7,7 +7,7 @@
 #include <string_view>
 #include <utility>
 
-#include "io/csv.hpp"
+#include "dfvn/io/csv.hpp"
 
 namespace dfvn::python {
 

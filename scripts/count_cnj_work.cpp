@@ -22,9 +22,9 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "integrate/trace.hpp"
-#include "sampling/curl_noise_jitter.hpp"
-#include "sampling/lattice.hpp"
+#include "dfvn/integrate/trace.hpp"
+#include "dfvn/sampling/curl_noise_jitter.hpp"
+#include "dfvn/sampling/lattice.hpp"
 
 namespace {
 

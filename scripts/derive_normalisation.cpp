@@ -12,10 +12,10 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "core/dimension.hpp"
-#include "core/hash.hpp"
-#include "field/cross_product.hpp"
-#include "noise/simplex_noise.hpp"
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/core/hash.hpp"
+#include "dfvn/field/cross_product.hpp"
+#include "dfvn/noise/simplex_noise.hpp"
 
 int main(int argc, char** argv) {
   const long samples = argc > 1 ? std::atol(argv[1]) : 200000;

@@ -7,9 +7,9 @@
 #include <string>
 #include <type_traits>
 
-#include "core/dimension.hpp"
-#include "core/hash.hpp"
-#include "noise/noise_functions.hpp"
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/core/hash.hpp"
+#include "dfvn/noise/noise_functions.hpp"
 
 namespace dfvn::testing {
 

@@ -1,4 +1,4 @@
-#include "core/bulk_memory.hpp"
+#include "dfvn/core/bulk_memory.hpp"
 
 #include <sys/mman.h>
 

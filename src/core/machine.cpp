@@ -1,4 +1,4 @@
-#include "core/machine.hpp"
+#include "dfvn/core/machine.hpp"
 
 #include <fstream>
 #include <thread>

@@ -1,4 +1,4 @@
-#include "core/message_text.hpp"
+#include "dfvn/core/message_text.hpp"
 
 #include <cmath>
 #include <iterator>

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
-#include "core/bulk_memory.hpp"
-#include "core/torus.hpp"
+#include "dfvn/core/bulk_memory.hpp"
+#include "dfvn/core/torus.hpp"
 
 namespace dfvn {
 

@@ -1,4 +1,4 @@
-#include "core/progress.hpp"
+#include "dfvn/core/progress.hpp"
 
 #include <unistd.h>
 
@@ -8,7 +8,7 @@
 
 #include <fmt/format.h>
 
-#include "core/message_text.hpp"
+#include "dfvn/core/message_text.hpp"
 
 namespace dfvn {
 

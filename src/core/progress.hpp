@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-#include "core/stopwatch.hpp"
+#include "dfvn/core/stopwatch.hpp"
 
 namespace dfvn {
 

@@ -1,4 +1,4 @@
-#include "experiment/experiment.hpp"
+#include "dfvn/experiment/experiment.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,18 +9,18 @@
 
 #include <fmt/format.h>
 
-#include "core/dimension.hpp"
-#include "core/message_text.hpp"
-#include "core/parallel.hpp"
-#include "core/stopwatch.hpp"
-#include "io/csv.hpp"
-#include "noise/noise_domain.hpp"
-#include "sampling/halton.hpp"
-#include "sampling/jitter.hpp"
-#include "sampling/latin_hypercube.hpp"
-#include "sampling/poisson_disk.hpp"
-#include "stats/geodesic.hpp"
-#include "stats/periodic_neighbours.hpp"
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/core/message_text.hpp"
+#include "dfvn/core/parallel.hpp"
+#include "dfvn/core/stopwatch.hpp"
+#include "dfvn/io/csv.hpp"
+#include "dfvn/noise/noise_domain.hpp"
+#include "dfvn/sampling/halton.hpp"
+#include "dfvn/sampling/jitter.hpp"
+#include "dfvn/sampling/latin_hypercube.hpp"
+#include "dfvn/sampling/poisson_disk.hpp"
+#include "dfvn/stats/geodesic.hpp"
+#include "dfvn/stats/periodic_neighbours.hpp"
 
 namespace dfvn {
 

@@ -8,15 +8,15 @@
 #include <string_view>
 #include <vector>
 
-#include "core/progress.hpp"
-#include "sampling/curl_noise_jitter.hpp"
-#include "sampling/lattice.hpp"
-#include "core/point_set.hpp"
-#include "sampling/sobol.hpp"
-#include "sampling/sphere_jitter.hpp"
-#include "stats/lattice_displacement.hpp"
-#include "stats/nearest_neighbour.hpp"
-#include "stats/radial_distribution.hpp"
+#include "dfvn/core/progress.hpp"
+#include "dfvn/sampling/curl_noise_jitter.hpp"
+#include "dfvn/sampling/lattice.hpp"
+#include "dfvn/core/point_set.hpp"
+#include "dfvn/sampling/sobol.hpp"
+#include "dfvn/sampling/sphere_jitter.hpp"
+#include "dfvn/stats/lattice_displacement.hpp"
+#include "dfvn/stats/nearest_neighbour.hpp"
+#include "dfvn/stats/radial_distribution.hpp"
 
 namespace dfvn {
 

@@ -1,10 +1,10 @@
-#include "experiment/json_report.hpp"
+#include "dfvn/experiment/json_report.hpp"
 
 #include <map>
 
 #include <nlohmann/json.hpp>
 
-#include "experiment/realizations.hpp"
+#include "dfvn/experiment/realizations.hpp"
 
 namespace dfvn {
 

@@ -9,8 +9,8 @@
 #include <string_view>
 #include <vector>
 
-#include "experiment/experiment.hpp"
-#include "stats/point_set_statistics.hpp"
+#include "dfvn/experiment/experiment.hpp"
+#include "dfvn/stats/point_set_statistics.hpp"
 
 namespace dfvn {
 

@@ -1,4 +1,4 @@
-#include "experiment/realizations.hpp"
+#include "dfvn/experiment/realizations.hpp"
 
 #include <algorithm>
 #include <charconv>

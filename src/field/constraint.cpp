@@ -1,4 +1,4 @@
-#include "field/constraint.hpp"
+#include "dfvn/field/constraint.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "core/message_text.hpp"
+#include "dfvn/core/message_text.hpp"
 
 namespace dfvn {
 

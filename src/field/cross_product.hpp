@@ -5,8 +5,8 @@
 #include <cmath>
 #include <utility>
 
-#include "core/dimension.hpp"
-#include "core/tree_sum.hpp"
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/core/tree_sum.hpp"
 
 namespace dfvn {
 

@@ -1,4 +1,4 @@
-#include "field/dfvn_field.hpp"
+#include "dfvn/field/dfvn_field.hpp"
 
 #include <cassert>
 #include <cmath>
@@ -8,8 +8,8 @@
 
 #include <fmt/format.h>
 
-#include "field/cross_product.hpp"
-#include "noise/noise_domain.hpp"
+#include "dfvn/field/cross_product.hpp"
+#include "dfvn/noise/noise_domain.hpp"
 
 namespace dfvn {
 

@@ -6,9 +6,9 @@
 #include <memory>
 #include <string_view>
 
-#include "core/dimension.hpp"
-#include "field/constraint.hpp"
-#include "noise/noise_functions.hpp"
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/field/constraint.hpp"
+#include "dfvn/noise/noise_functions.hpp"
 
 namespace dfvn {
 

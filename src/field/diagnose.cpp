@@ -1,4 +1,4 @@
-#include "field/diagnose.hpp"
+#include "dfvn/field/diagnose.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,10 +8,10 @@
 
 #include <fmt/format.h>
 
-#include "core/hash.hpp"
-#include "core/parallel.hpp"
-#include "core/quantile.hpp"
-#include "core/stopwatch.hpp"
+#include "dfvn/core/hash.hpp"
+#include "dfvn/core/parallel.hpp"
+#include "dfvn/core/quantile.hpp"
+#include "dfvn/core/stopwatch.hpp"
 
 namespace dfvn {
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "field/dfvn_field.hpp"
+#include "dfvn/field/dfvn_field.hpp"
 
 namespace dfvn {
 

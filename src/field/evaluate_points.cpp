@@ -1,13 +1,13 @@
-#include "field/evaluate_points.hpp"
+#include "dfvn/field/evaluate_points.hpp"
 
 #include <algorithm>
 #include <cstdint>
 
 #include <fmt/format.h>
 
-#include "core/parallel.hpp"
-#include "field/dfvn_field.hpp"
-#include "noise/noise_domain.hpp"
+#include "dfvn/core/parallel.hpp"
+#include "dfvn/field/dfvn_field.hpp"
+#include "dfvn/noise/noise_domain.hpp"
 
 namespace dfvn {
 

@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "field/dfvn_field.hpp"
+#include "dfvn/field/dfvn_field.hpp"
 
 namespace dfvn {
 

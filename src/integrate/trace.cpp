@@ -1,6 +1,6 @@
-#include "integrate/trace.hpp"
+#include "dfvn/integrate/trace.hpp"
 
-#include "core/message_text.hpp"
+#include "dfvn/core/message_text.hpp"
 
 #include <cmath>
 #include <stdexcept>

@@ -6,8 +6,8 @@
 #include <limits>
 #include <string_view>
 
-#include "core/dimension.hpp"
-#include "field/dfvn_field.hpp"
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/field/dfvn_field.hpp"
 
 namespace dfvn {
 

@@ -1,4 +1,4 @@
-#include "integrate/trace_impl.hpp"
+#include "dfvn/integrate/trace_impl.hpp"
 
 namespace dfvn {
 DFVN_INSTANTIATE_TRACER(3)

@@ -7,10 +7,10 @@
 #include <limits>
 #include <stdexcept>
 
-#include "field/cross_product.hpp"
-#include "integrate/min_norm_step.hpp"
-#include "integrate/trace.hpp"
-#include "noise/noise_domain.hpp"
+#include "dfvn/field/cross_product.hpp"
+#include "dfvn/integrate/min_norm_step.hpp"
+#include "dfvn/integrate/trace.hpp"
+#include "dfvn/noise/noise_domain.hpp"
 
 namespace dfvn {
 

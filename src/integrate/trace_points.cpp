@@ -1,13 +1,13 @@
-#include "integrate/trace_points.hpp"
+#include "dfvn/integrate/trace_points.hpp"
 
 #include <cmath>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
-#include "core/parallel.hpp"
-#include "core/torus.hpp"
-#include "integrate/trace_table.hpp"
+#include "dfvn/core/parallel.hpp"
+#include "dfvn/core/torus.hpp"
+#include "dfvn/integrate/trace_table.hpp"
 
 namespace dfvn {
 

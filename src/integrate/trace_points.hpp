@@ -4,8 +4,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "field/dfvn_field.hpp"
-#include "integrate/trace.hpp"
+#include "dfvn/field/dfvn_field.hpp"
+#include "dfvn/integrate/trace.hpp"
 
 namespace dfvn {
 

@@ -10,9 +10,9 @@
 #include <omp.h>
 #include <vector>
 
-#include "core/parallel.hpp"
-#include "core/progress.hpp"
-#include "integrate/trace.hpp"
+#include "dfvn/core/parallel.hpp"
+#include "dfvn/core/progress.hpp"
+#include "dfvn/integrate/trace.hpp"
 
 namespace dfvn {
 

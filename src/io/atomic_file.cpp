@@ -1,4 +1,4 @@
-#include "io/atomic_file.hpp"
+#include "dfvn/io/atomic_file.hpp"
 
 #include <atomic>
 #include <cerrno>
@@ -13,7 +13,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "core/message_text.hpp"
+#include "dfvn/core/message_text.hpp"
 
 namespace dfvn {
 

@@ -1,4 +1,4 @@
-#include "io/csv.hpp"
+#include "dfvn/io/csv.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "core/message_text.hpp"
+#include "dfvn/core/message_text.hpp"
 
 namespace dfvn {
 

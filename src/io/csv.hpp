@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "core/bulk_memory.hpp"
+#include "dfvn/core/bulk_memory.hpp"
 
 namespace dfvn {
 

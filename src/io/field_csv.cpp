@@ -1,10 +1,10 @@
-#include "io/field_csv.hpp"
+#include "dfvn/io/field_csv.hpp"
 
 #include <algorithm>
 #include <cstdint>
 #include <vector>
 
-#include "core/parallel.hpp"
+#include "dfvn/core/parallel.hpp"
 
 namespace dfvn {
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "io/csv.hpp"
+#include "dfvn/io/csv.hpp"
 
 namespace dfvn {
 

@@ -1,4 +1,4 @@
-#include "io/markdown_text.hpp"
+#include "dfvn/io/markdown_text.hpp"
 
 #include <algorithm>
 #include <vector>

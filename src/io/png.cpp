@@ -1,10 +1,10 @@
-#include "io/png.hpp"
+#include "dfvn/io/png.hpp"
 
 #include <png.h>
 
 #include <stdexcept>
 
-#include "io/atomic_file.hpp"
+#include "dfvn/io/atomic_file.hpp"
 
 namespace dfvn {
 

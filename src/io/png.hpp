@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "core/image.hpp"
+#include "dfvn/core/image.hpp"
 
 namespace dfvn {
 

@@ -1,6 +1,6 @@
-#include "io/point_file.hpp"
+#include "dfvn/io/point_file.hpp"
 
-#include "core/message_text.hpp"
+#include "dfvn/core/message_text.hpp"
 
 #include <bit>
 #include <cstdint>
@@ -10,8 +10,8 @@
 
 #include <stdexcept>
 
-#include "io/atomic_file.hpp"
-#include "io/csv.hpp"
+#include "dfvn/io/atomic_file.hpp"
+#include "dfvn/io/csv.hpp"
 
 namespace dfvn {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "core/point_set.hpp"
+#include "dfvn/core/point_set.hpp"
 
 namespace dfvn {
 

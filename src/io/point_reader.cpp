@@ -1,4 +1,4 @@
-#include "io/point_reader.hpp"
+#include "dfvn/io/point_reader.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -13,7 +13,7 @@
 
 #include <fmt/format.h>
 
-#include "core/message_text.hpp"
+#include "dfvn/core/message_text.hpp"
 
 namespace dfvn {
 

@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-#include "io/csv.hpp"
+#include "dfvn/io/csv.hpp"
 
 namespace dfvn {
 

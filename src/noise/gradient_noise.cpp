@@ -1,12 +1,12 @@
-#include "noise/gradient_noise.hpp"
+#include "dfvn/noise/gradient_noise.hpp"
 
 #include <cmath>
 #include <stdexcept>
 #include <vector>
 
-#include "core/hash.hpp"
-#include "noise/quintic_fade.hpp"
-#include "noise/random_frame.hpp"
+#include "dfvn/core/hash.hpp"
+#include "dfvn/noise/quintic_fade.hpp"
+#include "dfvn/noise/random_frame.hpp"
 
 namespace dfvn {
 namespace {

@@ -7,8 +7,8 @@
 
 #include <Eigen/Core>
 
-#include "core/dimension.hpp"
-#include "noise/noise_functions.hpp"
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/noise/noise_functions.hpp"
 
 namespace dfvn {
 

@@ -1,10 +1,10 @@
-#include "noise/noise_functions.hpp"
+#include "dfvn/noise/noise_functions.hpp"
 
 #include <stdexcept>
 
-#include "noise/gradient_noise.hpp"
-#include "noise/simplex_noise.hpp"
-#include "noise/turning_bands.hpp"
+#include "dfvn/noise/gradient_noise.hpp"
+#include "dfvn/noise/simplex_noise.hpp"
+#include "dfvn/noise/turning_bands.hpp"
 
 namespace dfvn {
 

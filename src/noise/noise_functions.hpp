@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "core/dimension.hpp"
+#include "dfvn/core/dimension.hpp"
 
 namespace dfvn {
 

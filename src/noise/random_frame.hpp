@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 #include <Eigen/QR>
 
-#include "core/hash.hpp"
+#include "dfvn/core/hash.hpp"
 
 namespace dfvn {
 

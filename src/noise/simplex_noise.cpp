@@ -1,10 +1,10 @@
-#include "noise/simplex_noise.hpp"
+#include "dfvn/noise/simplex_noise.hpp"
 
 #include <cassert>
 #include <cmath>
 
-#include "core/hash.hpp"
-#include "noise/simplex_normalisation.hpp"
+#include "dfvn/core/hash.hpp"
+#include "dfvn/noise/simplex_normalisation.hpp"
 
 namespace dfvn {
 namespace {

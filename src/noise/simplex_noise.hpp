@@ -4,8 +4,8 @@
 #include <array>
 #include <cstdint>
 
-#include "core/dimension.hpp"
-#include "noise/noise_functions.hpp"
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/noise/noise_functions.hpp"
 
 namespace dfvn {
 

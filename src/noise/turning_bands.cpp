@@ -1,10 +1,10 @@
-#include "noise/turning_bands.hpp"
+#include "dfvn/noise/turning_bands.hpp"
 
 #include <cmath>
 
-#include "core/hash.hpp"
-#include "noise/random_frame.hpp"
-#include "noise/turning_bands_kernel.hpp"
+#include "dfvn/core/hash.hpp"
+#include "dfvn/noise/random_frame.hpp"
+#include "dfvn/noise/turning_bands_kernel.hpp"
 
 namespace dfvn {
 namespace {

@@ -7,9 +7,9 @@
 
 #include <Eigen/Core>
 
-#include "core/dimension.hpp"
-#include "core/simd.hpp"
-#include "noise/noise_functions.hpp"
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/core/simd.hpp"
+#include "dfvn/noise/noise_functions.hpp"
 
 namespace dfvn {
 

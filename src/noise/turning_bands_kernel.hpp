@@ -6,9 +6,9 @@
 #include <cmath>
 #include <cstdint>
 
-#include "core/hash.hpp"
-#include "noise/quintic_fade.hpp"
-#include "noise/turning_bands.hpp"
+#include "dfvn/core/hash.hpp"
+#include "dfvn/noise/quintic_fade.hpp"
+#include "dfvn/noise/turning_bands.hpp"
 
 namespace dfvn {
 namespace turning_bands_detail {

@@ -7,9 +7,9 @@
 
 #include <fmt/format.h>
 
-#include "noise/noise_domain.hpp"
-#include "noise/turning_bands.hpp"
-#include "noise/turning_bands_kernel.hpp"
+#include "dfvn/noise/noise_domain.hpp"
+#include "dfvn/noise/turning_bands.hpp"
+#include "dfvn/noise/turning_bands_kernel.hpp"
 
 namespace dfvn {
 namespace {

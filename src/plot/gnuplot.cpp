@@ -1,4 +1,4 @@
-#include "plot/gnuplot.hpp"
+#include "dfvn/plot/gnuplot.hpp"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -19,8 +19,8 @@
 
 #include <fmt/format.h>
 
-#include "core/message_text.hpp"
-#include "io/atomic_file.hpp"
+#include "dfvn/core/message_text.hpp"
+#include "dfvn/io/atomic_file.hpp"
 #include "plot_programs.hpp"
 
 extern char** environ;

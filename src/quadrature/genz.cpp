@@ -1,11 +1,11 @@
-#include "quadrature/genz.hpp"
+#include "dfvn/quadrature/genz.hpp"
 
 #include <cmath>
 #include <complex>
 #include <numbers>
 #include <stdexcept>
 
-#include "core/hash.hpp"
+#include "dfvn/core/hash.hpp"
 
 namespace dfvn {
 

@@ -1,4 +1,4 @@
-#include "reproduce/cnj_study.hpp"
+#include "dfvn/reproduce/cnj_study.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,19 +10,19 @@
 
 #include <fmt/format.h>
 
-#include "core/quantile.hpp"
-#include "core/repeats.hpp"
-#include "core/seeds.hpp"
-#include "core/stopwatch.hpp"
-#include "io/atomic_file.hpp"
-#include "noise/noise_domain.hpp"
-#include "plot/gnuplot.hpp"
-#include "reproduce/reproduce.hpp"
-#include "sampling/curl_noise_jitter.hpp"
-#include "sampling/jitter.hpp"
-#include "sampling/lattice.hpp"
-#include "stats/lattice_displacement.hpp"
-#include "stats/nearest_neighbour.hpp"
+#include "dfvn/core/quantile.hpp"
+#include "dfvn/core/repeats.hpp"
+#include "dfvn/core/seeds.hpp"
+#include "dfvn/core/stopwatch.hpp"
+#include "dfvn/io/atomic_file.hpp"
+#include "dfvn/noise/noise_domain.hpp"
+#include "dfvn/plot/gnuplot.hpp"
+#include "dfvn/reproduce/reproduce.hpp"
+#include "dfvn/sampling/curl_noise_jitter.hpp"
+#include "dfvn/sampling/jitter.hpp"
+#include "dfvn/sampling/lattice.hpp"
+#include "dfvn/stats/lattice_displacement.hpp"
+#include "dfvn/stats/nearest_neighbour.hpp"
 
 namespace dfvn {
 

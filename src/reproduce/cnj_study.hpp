@@ -9,9 +9,9 @@
 #include <string_view>
 #include <vector>
 
-#include "noise/noise_functions.hpp"
-#include "reproduce/reproduce.hpp"
-#include "sampling/curl_noise_jitter.hpp"
+#include "dfvn/noise/noise_functions.hpp"
+#include "dfvn/reproduce/reproduce.hpp"
+#include "dfvn/sampling/curl_noise_jitter.hpp"
 
 namespace dfvn {
 

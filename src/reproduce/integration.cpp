@@ -1,4 +1,4 @@
-#include "reproduce/integration.hpp"
+#include "dfvn/reproduce/integration.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,11 +11,11 @@
 
 #include <fmt/format.h>
 
-#include "core/repeats.hpp"
-#include "core/seeds.hpp"
-#include "io/atomic_file.hpp"
-#include "plot/gnuplot.hpp"
-#include "experiment/realizations.hpp"
+#include "dfvn/core/repeats.hpp"
+#include "dfvn/core/seeds.hpp"
+#include "dfvn/io/atomic_file.hpp"
+#include "dfvn/plot/gnuplot.hpp"
+#include "dfvn/experiment/realizations.hpp"
 
 namespace dfvn {
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "quadrature/genz.hpp"
-#include "reproduce/reproduce.hpp"
+#include "dfvn/quadrature/genz.hpp"
+#include "dfvn/reproduce/reproduce.hpp"
 
 namespace dfvn {
 

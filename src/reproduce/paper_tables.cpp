@@ -1,4 +1,4 @@
-#include "reproduce/paper_tables.hpp"
+#include "dfvn/reproduce/paper_tables.hpp"
 
 #include <sstream>
 #include <stdexcept>

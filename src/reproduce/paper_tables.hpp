@@ -4,8 +4,8 @@
 #include <optional>
 #include <vector>
 
-#include "core/point_set.hpp"
-#include "sampling/method.hpp"
+#include "dfvn/core/point_set.hpp"
+#include "dfvn/sampling/method.hpp"
 
 namespace dfvn {
 

@@ -7,9 +7,9 @@
 #include <string_view>
 #include <vector>
 
-#include "experiment/experiment.hpp"
-#include "experiment/realizations.hpp"
-#include "warp/image_warp.hpp"
+#include "dfvn/experiment/experiment.hpp"
+#include "dfvn/experiment/realizations.hpp"
+#include "dfvn/warp/image_warp.hpp"
 
 namespace dfvn {
 

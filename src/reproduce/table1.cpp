@@ -8,14 +8,14 @@
 
 #include <fmt/format.h>
 
-#include "core/machine.hpp"
-#include "core/message_text.hpp"
-#include "core/repeats.hpp"
-#include "core/seeds.hpp"
-#include "core/stopwatch.hpp"
-#include "io/atomic_file.hpp"
-#include "plot/gnuplot.hpp"
-#include "reproduce/reproduce.hpp"
+#include "dfvn/core/machine.hpp"
+#include "dfvn/core/message_text.hpp"
+#include "dfvn/core/repeats.hpp"
+#include "dfvn/core/seeds.hpp"
+#include "dfvn/core/stopwatch.hpp"
+#include "dfvn/io/atomic_file.hpp"
+#include "dfvn/plot/gnuplot.hpp"
+#include "dfvn/reproduce/reproduce.hpp"
 
 namespace dfvn {
 

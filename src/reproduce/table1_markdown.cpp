@@ -5,8 +5,8 @@
 
 #include <fmt/format.h>
 
-#include "reproduce/paper_tables.hpp"
-#include "reproduce/reproduce.hpp"
+#include "dfvn/reproduce/paper_tables.hpp"
+#include "dfvn/reproduce/reproduce.hpp"
 
 namespace dfvn {
 

@@ -4,14 +4,14 @@
 
 #include <fmt/format.h>
 
-#include "core/machine.hpp"
-#include "core/parallel.hpp"
-#include "core/stopwatch.hpp"
-#include "io/atomic_file.hpp"
-#include "io/png.hpp"
-#include "plot/gnuplot.hpp"
-#include "reproduce/paper_tables.hpp"
-#include "reproduce/reproduce.hpp"
+#include "dfvn/core/machine.hpp"
+#include "dfvn/core/parallel.hpp"
+#include "dfvn/core/stopwatch.hpp"
+#include "dfvn/io/atomic_file.hpp"
+#include "dfvn/io/png.hpp"
+#include "dfvn/plot/gnuplot.hpp"
+#include "dfvn/reproduce/paper_tables.hpp"
+#include "dfvn/reproduce/reproduce.hpp"
 
 namespace dfvn {
 

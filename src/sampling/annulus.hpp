@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <numbers>
 
-#include "core/hash.hpp"
+#include "dfvn/core/hash.hpp"
 
 namespace dfvn {
 

@@ -1,4 +1,4 @@
-#include "sampling/curl_noise_jitter.hpp"
+#include "dfvn/sampling/curl_noise_jitter.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,9 +6,9 @@
 
 #include <fmt/format.h>
 
-#include "core/message_text.hpp"
-#include "noise/noise_domain.hpp"
-#include "integrate/trace_table.hpp"
+#include "dfvn/core/message_text.hpp"
+#include "dfvn/noise/noise_domain.hpp"
+#include "dfvn/integrate/trace_table.hpp"
 
 namespace dfvn {
 

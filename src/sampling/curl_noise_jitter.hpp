@@ -11,11 +11,11 @@
 #include <string_view>
 #include <vector>
 
-#include "core/progress.hpp"
-#include "field/constraint.hpp"
-#include "integrate/trace.hpp"
-#include "sampling/lattice.hpp"
-#include "core/point_set.hpp"
+#include "dfvn/core/progress.hpp"
+#include "dfvn/field/constraint.hpp"
+#include "dfvn/integrate/trace.hpp"
+#include "dfvn/sampling/lattice.hpp"
+#include "dfvn/core/point_set.hpp"
 
 namespace dfvn {
 

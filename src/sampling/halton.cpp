@@ -1,4 +1,4 @@
-#include "sampling/halton.hpp"
+#include "dfvn/sampling/halton.hpp"
 
 #include <array>
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "core/hash.hpp"
-#include "core/parallel.hpp"
+#include "dfvn/core/hash.hpp"
+#include "dfvn/core/parallel.hpp"
 
 namespace dfvn {
 

@@ -7,7 +7,7 @@
 
 #include <cstdint>
 
-#include "core/point_set.hpp"
+#include "dfvn/core/point_set.hpp"
 
 namespace dfvn {
 

@@ -1,12 +1,12 @@
-#include "sampling/jitter.hpp"
+#include "dfvn/sampling/jitter.hpp"
 
 #include <cmath>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
-#include "core/hash.hpp"
-#include "core/parallel.hpp"
+#include "dfvn/core/hash.hpp"
+#include "dfvn/core/parallel.hpp"
 
 namespace dfvn {
 

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "sampling/lattice.hpp"
-#include "core/point_set.hpp"
+#include "dfvn/sampling/lattice.hpp"
+#include "dfvn/core/point_set.hpp"
 
 namespace dfvn {
 

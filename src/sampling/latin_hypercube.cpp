@@ -1,11 +1,11 @@
-#include "sampling/latin_hypercube.hpp"
+#include "dfvn/sampling/latin_hypercube.hpp"
 
 #include <numeric>
 #include <utility>
 #include <vector>
 
-#include "core/hash.hpp"
-#include "core/parallel.hpp"
+#include "dfvn/core/hash.hpp"
+#include "dfvn/core/parallel.hpp"
 
 namespace dfvn {
 

@@ -1,10 +1,10 @@
-#include "sampling/lattice.hpp"
+#include "dfvn/sampling/lattice.hpp"
 
 #include <algorithm>
 
 #include <fmt/format.h>
 
-#include "core/message_text.hpp"
+#include "dfvn/core/message_text.hpp"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "sampling/poisson_disk.hpp"
+#include "dfvn/sampling/poisson_disk.hpp"
 
 #include <omp.h>
 
@@ -14,11 +14,11 @@
 #include <thread>
 #include <vector>
 
-#include "core/bulk_memory.hpp"
-#include "core/dimension.hpp"
-#include "core/hash.hpp"
-#include "core/parallel.hpp"
-#include "sampling/annulus.hpp"
+#include "dfvn/core/bulk_memory.hpp"
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/core/hash.hpp"
+#include "dfvn/core/parallel.hpp"
+#include "dfvn/sampling/annulus.hpp"
 
 namespace dfvn {
 

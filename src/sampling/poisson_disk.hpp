@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <limits>
 
-#include "core/progress.hpp"
-#include "core/point_set.hpp"
+#include "dfvn/core/progress.hpp"
+#include "dfvn/core/point_set.hpp"
 
 namespace dfvn {
 

@@ -1,4 +1,4 @@
-#include "sampling/sobol.hpp"
+#include "dfvn/sampling/sobol.hpp"
 
 #include <algorithm>
 #include <array>
@@ -9,9 +9,9 @@
 #include <string>
 #include <utility>
 
-#include "core/hash.hpp"
-#include "core/message_text.hpp"
-#include "core/parallel.hpp"
+#include "dfvn/core/hash.hpp"
+#include "dfvn/core/message_text.hpp"
+#include "dfvn/core/parallel.hpp"
 #include "joe_kuo_table.hpp"
 
 namespace dfvn {

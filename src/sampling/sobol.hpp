@@ -6,8 +6,8 @@
 #include <string_view>
 #include <vector>
 
-#include "core/simd.hpp"
-#include "core/point_set.hpp"
+#include "dfvn/core/simd.hpp"
+#include "dfvn/core/point_set.hpp"
 
 namespace dfvn {
 

@@ -1,4 +1,4 @@
-#include "sampling/sphere_jitter.hpp"
+#include "dfvn/sampling/sphere_jitter.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -6,10 +6,10 @@
 
 #include <fmt/format.h>
 
-#include "core/hash.hpp"
-#include "core/message_text.hpp"
-#include "core/parallel.hpp"
-#include "integrate/trace_table.hpp"
+#include "dfvn/core/hash.hpp"
+#include "dfvn/core/message_text.hpp"
+#include "dfvn/core/parallel.hpp"
+#include "dfvn/integrate/trace_table.hpp"
 
 namespace dfvn {
 

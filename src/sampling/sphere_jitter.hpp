@@ -7,8 +7,8 @@
 #include <string_view>
 #include <vector>
 
-#include "sampling/curl_noise_jitter.hpp"
-#include "core/point_set.hpp"
+#include "dfvn/sampling/curl_noise_jitter.hpp"
+#include "dfvn/core/point_set.hpp"
 
 namespace dfvn {
 

@@ -1,4 +1,4 @@
-#include "stats/discrepancy.hpp"
+#include "dfvn/stats/discrepancy.hpp"
 
 #include <algorithm>
 #include <array>
@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "core/parallel.hpp"
+#include "dfvn/core/parallel.hpp"
 
 namespace dfvn {
 

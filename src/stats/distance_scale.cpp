@@ -1,4 +1,4 @@
-#include "stats/distance_scale.hpp"
+#include "dfvn/stats/distance_scale.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "core/point_set.hpp"
+#include "dfvn/core/point_set.hpp"
 
 namespace dfvn {
 

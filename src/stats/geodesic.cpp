@@ -1,10 +1,10 @@
-#include "stats/geodesic.hpp"
+#include "dfvn/stats/geodesic.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "core/point_set.hpp"
+#include "dfvn/core/point_set.hpp"
 
 namespace dfvn {
 

@@ -3,8 +3,8 @@
 
 #include <vector>
 
-#include "core/point_set.hpp"
-#include "stats/nearest_neighbour.hpp"
+#include "dfvn/core/point_set.hpp"
+#include "dfvn/stats/nearest_neighbour.hpp"
 
 namespace dfvn {
 

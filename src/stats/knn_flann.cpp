@@ -5,10 +5,10 @@
 #include <cmath>
 #include <vector>
 
-#include "core/parallel.hpp"
-#include "core/point_set.hpp"
-#include "stats/kd_tree.hpp"
-#include "stats/nearest_neighbour.hpp"
+#include "dfvn/core/parallel.hpp"
+#include "dfvn/core/point_set.hpp"
+#include "dfvn/stats/kd_tree.hpp"
+#include "dfvn/stats/nearest_neighbour.hpp"
 
 namespace dfvn {
 

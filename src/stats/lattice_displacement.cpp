@@ -1,4 +1,4 @@
-#include "stats/lattice_displacement.hpp"
+#include "dfvn/stats/lattice_displacement.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "core/quantile.hpp"
+#include "dfvn/core/quantile.hpp"
 
 namespace dfvn {
 

@@ -1,6 +1,6 @@
-#include "stats/nearest_neighbour.hpp"
+#include "dfvn/stats/nearest_neighbour.hpp"
 
-#include "core/message_text.hpp"
+#include "dfvn/core/message_text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,12 +9,12 @@
 #include <string>
 #include <utility>
 
-#include "core/dimension.hpp"
-#include "core/parallel.hpp"
-#include "core/quantile.hpp"
-#include "stats/distance_scale.hpp"
-#include "stats/kd_tree.hpp"
-#include "stats/neighbour_loop.hpp"
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/core/parallel.hpp"
+#include "dfvn/core/quantile.hpp"
+#include "dfvn/stats/distance_scale.hpp"
+#include "dfvn/stats/kd_tree.hpp"
+#include "dfvn/stats/neighbour_loop.hpp"
 
 namespace dfvn {
 

@@ -5,8 +5,8 @@
 #include <string_view>
 #include <vector>
 
-#include "core/progress.hpp"
-#include "core/point_set.hpp"
+#include "dfvn/core/progress.hpp"
+#include "dfvn/core/point_set.hpp"
 
 namespace dfvn {
 

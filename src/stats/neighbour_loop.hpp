@@ -9,8 +9,8 @@
 #include <limits>
 #include <vector>
 
-#include "core/parallel.hpp"
-#include "core/progress.hpp"
+#include "dfvn/core/parallel.hpp"
+#include "dfvn/core/progress.hpp"
 
 namespace dfvn::neighbour_loop {
 

@@ -1,4 +1,4 @@
-#include "stats/periodic_neighbours.hpp"
+#include "dfvn/stats/periodic_neighbours.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,12 +8,12 @@
 
 #include <fmt/format.h>
 
-#include "core/dimension.hpp"
-#include "core/parallel.hpp"
-#include "stats/distance_scale.hpp"
-#include "stats/kd_tree.hpp"
-#include "stats/neighbour_loop.hpp"
-#include "stats/periodic_images.hpp"
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/core/parallel.hpp"
+#include "dfvn/stats/distance_scale.hpp"
+#include "dfvn/stats/kd_tree.hpp"
+#include "dfvn/stats/neighbour_loop.hpp"
+#include "dfvn/stats/periodic_images.hpp"
 
 namespace dfvn {
 

@@ -6,8 +6,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "core/progress.hpp"
-#include "core/point_set.hpp"
+#include "dfvn/core/progress.hpp"
+#include "dfvn/core/point_set.hpp"
 
 namespace dfvn {
 

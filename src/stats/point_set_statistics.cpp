@@ -1,4 +1,4 @@
-#include "stats/point_set_statistics.hpp"
+#include "dfvn/stats/point_set_statistics.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -7,10 +7,10 @@
 
 #include <fmt/format.h>
 
-#include "core/stopwatch.hpp"
-#include "io/csv.hpp"
-#include "stats/distance_scale.hpp"
-#include "stats/periodic_neighbours.hpp"
+#include "dfvn/core/stopwatch.hpp"
+#include "dfvn/io/csv.hpp"
+#include "dfvn/stats/distance_scale.hpp"
+#include "dfvn/stats/periodic_neighbours.hpp"
 
 namespace dfvn {
 

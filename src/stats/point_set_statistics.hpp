@@ -9,10 +9,10 @@
 #include <string_view>
 #include <vector>
 
-#include "core/progress.hpp"
-#include "core/point_set.hpp"
-#include "stats/discrepancy.hpp"
-#include "stats/nearest_neighbour.hpp"
+#include "dfvn/core/progress.hpp"
+#include "dfvn/core/point_set.hpp"
+#include "dfvn/stats/discrepancy.hpp"
+#include "dfvn/stats/nearest_neighbour.hpp"
 
 namespace dfvn {
 

@@ -1,4 +1,4 @@
-#include "stats/radial_distribution.hpp"
+#include "dfvn/stats/radial_distribution.hpp"
 
 #include <atomic>
 #include <cmath>
@@ -8,13 +8,13 @@
 
 #include <fmt/format.h>
 
-#include "core/dimension.hpp"
-#include "core/hash.hpp"
-#include "core/parallel.hpp"
-#include "stats/distance_scale.hpp"
-#include "stats/kd_tree.hpp"
-#include "stats/periodic_images.hpp"
-#include "stats/periodic_neighbours.hpp"
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/core/hash.hpp"
+#include "dfvn/core/parallel.hpp"
+#include "dfvn/stats/distance_scale.hpp"
+#include "dfvn/stats/kd_tree.hpp"
+#include "dfvn/stats/periodic_images.hpp"
+#include "dfvn/stats/periodic_neighbours.hpp"
 
 namespace dfvn {
 

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/progress.hpp"
-#include "core/point_set.hpp"
+#include "dfvn/core/progress.hpp"
+#include "dfvn/core/point_set.hpp"
 
 namespace dfvn {
 

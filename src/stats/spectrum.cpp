@@ -1,4 +1,4 @@
-#include "stats/spectrum.hpp"
+#include "dfvn/stats/spectrum.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -9,10 +9,10 @@
 
 #include <fmt/format.h>
 
-#include "core/parallel.hpp"
-#include "io/atomic_file.hpp"
-#include "io/csv.hpp"
-#include "plot/gnuplot.hpp"
+#include "dfvn/core/parallel.hpp"
+#include "dfvn/io/atomic_file.hpp"
+#include "dfvn/io/csv.hpp"
+#include "dfvn/plot/gnuplot.hpp"
 
 namespace dfvn {
 

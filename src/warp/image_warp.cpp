@@ -1,4 +1,4 @@
-#include "warp/image_warp.hpp"
+#include "dfvn/warp/image_warp.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -9,11 +9,11 @@
 #include <fmt/format.h>
 #include <omp.h>
 
-#include "core/parallel.hpp"
-#include "noise/noise_domain.hpp"
+#include "dfvn/core/parallel.hpp"
+#include "dfvn/noise/noise_domain.hpp"
 
 #include <omp.h>
-#include "noise/gradient_noise.hpp"
+#include "dfvn/noise/gradient_noise.hpp"
 
 namespace dfvn {
 

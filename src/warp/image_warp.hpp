@@ -6,9 +6,9 @@
 #include <string_view>
 #include <vector>
 
-#include "core/image.hpp"
-#include "core/progress.hpp"
-#include "integrate/trace.hpp"
+#include "dfvn/core/image.hpp"
+#include "dfvn/core/progress.hpp"
+#include "dfvn/integrate/trace.hpp"
 
 namespace dfvn {
 

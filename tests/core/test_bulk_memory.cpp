@@ -1,5 +1,5 @@
 // Bulk memory: huge-page-aligned zeroed pages for large blocks, vectors that do not fill what they size.
-#include "core/bulk_memory.hpp"
+#include "dfvn/core/bulk_memory.hpp"
 
 #include <gtest/gtest.h>
 

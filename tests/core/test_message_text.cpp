@@ -1,10 +1,10 @@
-#include "core/message_text.hpp"
+#include "dfvn/core/message_text.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "core/parallel.hpp"
+#include "dfvn/core/parallel.hpp"
 
 namespace dfvn {
 namespace {

@@ -1,5 +1,5 @@
 // The progress reporter: what reaches the stream in each mode, and the line it writes.
-#include "core/progress.hpp"
+#include "dfvn/core/progress.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "core/quantile.hpp"
+#include "dfvn/core/quantile.hpp"
 
 #include <gtest/gtest.h>
 

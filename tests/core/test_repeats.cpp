@@ -1,5 +1,5 @@
 // first_repeat: the first entry an earlier one already holds.
-#include "core/repeats.hpp"
+#include "dfvn/core/repeats.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,14 +1,14 @@
 // check_seed_range: issue 23, the third seed of --seed 2^64 - 2 --realizations 3 wrapped to 0.
-#include "core/seeds.hpp"
+#include "dfvn/core/seeds.hpp"
 
 #include <gtest/gtest.h>
 
 #include <limits>
 #include <string>
 
-#include "reproduce/cnj_study.hpp"
-#include "reproduce/integration.hpp"
-#include "reproduce/reproduce.hpp"
+#include "dfvn/reproduce/cnj_study.hpp"
+#include "dfvn/reproduce/integration.hpp"
+#include "dfvn/reproduce/reproduce.hpp"
 
 namespace dfvn {
 namespace {

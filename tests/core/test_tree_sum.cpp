@@ -1,4 +1,4 @@
-#include "core/tree_sum.hpp"
+#include "dfvn/core/tree_sum.hpp"
 
 #include <gtest/gtest.h>
 

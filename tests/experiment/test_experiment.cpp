@@ -1,7 +1,7 @@
 // The whole sampling experiment: determinism, and the paper protocol against Table 1.
-#include "experiment/experiment.hpp"
+#include "dfvn/experiment/experiment.hpp"
 
-#include "io/csv.hpp"
+#include "dfvn/io/csv.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Point counts instead of lattice sizes: grid_for_count and SampleConfig::count.
 #include <cmath>
 
-#include "experiment/experiment.hpp"
+#include "dfvn/experiment/experiment.hpp"
 #include "test_support.hpp"
 
 namespace dfvn {

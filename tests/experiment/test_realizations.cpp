@@ -1,13 +1,13 @@
-#include "experiment/realizations.hpp"
+#include "dfvn/experiment/realizations.hpp"
 
 #include <gtest/gtest.h>
 
-#include "io/csv.hpp"
-#include "experiment/json_report.hpp"
+#include "dfvn/io/csv.hpp"
+#include "dfvn/experiment/json_report.hpp"
 
 #include <cmath>
 
-#include "stats/point_set_statistics.hpp"
+#include "dfvn/stats/point_set_statistics.hpp"
 
 namespace dfvn {
 namespace {

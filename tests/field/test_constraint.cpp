@@ -1,11 +1,11 @@
 // The constrained fields of Section 4 (field/constraint.hpp): bounded by the cube or the ball (Eq. 13)
 // and on the sphere, swept over dimensions 2..8 (the sphere 3..8).
-#include "field/constraint.hpp"
+#include "dfvn/field/constraint.hpp"
 
 #include <cmath>
 #include <cstdio>
 
-#include "field/dfvn_field.hpp"
+#include "dfvn/field/dfvn_field.hpp"
 #include "test_support.hpp"
 
 namespace dfvn {

@@ -1,4 +1,4 @@
-#include "field/cross_product.hpp"
+#include "dfvn/field/cross_product.hpp"
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>

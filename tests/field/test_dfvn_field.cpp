@@ -1,11 +1,11 @@
-#include "field/dfvn_field.hpp"
+#include "dfvn/field/dfvn_field.hpp"
 
 #include <cmath>
 #include <vector>
 
-#include "field/diagnose.hpp"
-#include "field/evaluate_points.hpp"
-#include "io/field_csv.hpp"
+#include "dfvn/field/diagnose.hpp"
+#include "dfvn/field/evaluate_points.hpp"
+#include "dfvn/io/field_csv.hpp"
 #include "test_support.hpp"
 
 namespace dfvn {

@@ -1,8 +1,8 @@
-#include "field/evaluate_points.hpp"
+#include "dfvn/field/evaluate_points.hpp"
 
 #include <vector>
 
-#include "core/hash.hpp"
+#include "dfvn/core/hash.hpp"
 #include "test_support.hpp"
 
 namespace dfvn {

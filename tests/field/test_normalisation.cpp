@@ -1,10 +1,10 @@
 // Re-checks the amplitudes of src/noise/simplex_normalisation.hpp: RMS |c| = 1 in every dimension, measured
 // on seeds and points that the derivation (scripts/derive_normalisation) did not use.
-#include "noise/simplex_normalisation.hpp"
+#include "dfvn/noise/simplex_normalisation.hpp"
 
 #include <cmath>
 
-#include "field/dfvn_field.hpp"
+#include "dfvn/field/dfvn_field.hpp"
 #include "test_support.hpp"
 
 namespace dfvn {

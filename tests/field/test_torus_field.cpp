@@ -3,9 +3,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "field/diagnose.hpp"
-#include "field/dfvn_field.hpp"
-#include "integrate/trace.hpp"
+#include "dfvn/field/diagnose.hpp"
+#include "dfvn/field/dfvn_field.hpp"
+#include "dfvn/integrate/trace.hpp"
 #include "test_support.hpp"
 
 namespace dfvn {

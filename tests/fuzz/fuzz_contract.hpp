@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "io/csv.hpp"
-#include "io/point_reader.hpp"
+#include "dfvn/io/csv.hpp"
+#include "dfvn/io/point_reader.hpp"
 
 namespace dfvn::fuzz {
 

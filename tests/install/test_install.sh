@@ -22,10 +22,24 @@ for path in bin/dfvn-sample "$DFVN_LIBDIR/libdfvn.so" include/dfvn/field/dfvn_fi
             share/bash-completion/completions/dfvn-sample; do
   [[ -e $prefix/$path ]] || fail "not installed: $path"
 done
-# Headers that pull in private dependencies (OpenMP, nanoflann) stay private.
-for path in include/dfvn/core/parallel.hpp include/dfvn/stats/kd_tree.hpp include/dfvn/integrate/trace_impl.hpp; do
+# Only the public API is installed: headers of private dependencies (OpenMP, nanoflann), template
+# internals, the reproductions, the plots and the command line's text helpers stay private.
+for path in include/dfvn/core/parallel.hpp include/dfvn/stats/kd_tree.hpp include/dfvn/integrate/trace_impl.hpp \
+            include/dfvn/io/markdown_text.hpp include/dfvn/core/message_text.hpp include/dfvn/plot/gnuplot.hpp \
+            include/dfvn/reproduce/reproduce.hpp include/dfvn/reproduce/cnj_study.hpp; do
   [[ ! -e $prefix/$path ]] || fail "installed, but private: $path"
 done
+# The umbrella <dfvn/dfvn.hpp> includes exactly the installed headers.
+installed=$(cd "$prefix/include" && find dfvn -name '*.hpp' ! -path dfvn/dfvn.hpp | sort)
+umbrella=$(sed -n 's@^#include "\(dfvn/.*\.hpp\)"$@\1@p' "$prefix/include/dfvn/dfvn.hpp" | sort)
+[[ $installed == "$umbrella" ]] ||
+  fail "<dfvn/dfvn.hpp> and the installed headers differ: $(diff <(echo "$umbrella") <(echo "$installed") | grep '^[<>]' | tr '\n' ' ')"
+# Every include inside the installed headers is rooted at dfvn/ (a bare "core/x.hpp" would resolve
+# against the user's own folders).
+if grep -rnE '^\s*#\s*include\s+["<](core|experiment|field|integrate|io|noise|quadrature|sampling|stats|warp)/' \
+     "$prefix/include/dfvn"; then
+  fail "an installed header includes a library header without the dfvn/ root"
+fi
 echo "ok: the tree"
 
 # The installed binary runs from the moved tree, finding its library without LD_LIBRARY_PATH.
@@ -46,6 +60,7 @@ pc_path=$prefix/$DFVN_LIBDIR/pkgconfig
 read -r -a cflags <<<"$(PKG_CONFIG_PATH=$pc_path pkg-config --cflags dfvn)"
 read -r -a libs <<<"$(PKG_CONFIG_PATH=$pc_path pkg-config --libs dfvn)"
 [[ " ${cflags[*]} " == *" -I$pc_path/"* ]] || fail "pkg-config --cflags gives '${cflags[*]}', not this prefix"
+[[ " ${cflags[*]} " != *"/include/dfvn "* ]] || fail "pkg-config --cflags adds include/dfvn: '${cflags[*]}'"
 (cd "$prefix/include" && find dfvn -name '*.hpp' | sort | sed 's/.*/#include <&>/') >"$work/all_headers.cpp"
 "$CXX" -std=c++20 -fsyntax-only "${cflags[@]}" "$work/all_headers.cpp" || fail "the installed headers do not compile"
 echo "ok: $(wc -l <"$work/all_headers.cpp") headers compile"
@@ -65,9 +80,11 @@ got=$("$work/consumer/consumer" "${point[@]}")
 [[ $got == "$expected" ]] || fail "find_package consumer: c = $got, dfvn-sample field: $expected"
 echo "ok: find_package(dfvn) consumer: c = $got"
 
-# The same consumer compiled by hand with pkg-config.
-"$CXX" -std=c++20 "${cflags[@]}" "$DFVN_SOURCE_DIR/tests/install/consumer/main.cpp" "${libs[@]}" \
-       -Wl,-rpath,"$prefix/$DFVN_LIBDIR" -o "$work/consumer_pc" || fail "the pkg-config build fails"
-got=$("$work/consumer_pc" "${point[@]}")
+# The same consumer compiled by hand with pkg-config, its own folders first on the include path, as
+# README shows it; the rpath comes from `pkg-config --libs`, so it runs without LD_LIBRARY_PATH.
+"$CXX" -std=c++20 -I"$DFVN_SOURCE_DIR/tests/install/consumer" "${cflags[@]}" \
+       "$DFVN_SOURCE_DIR/tests/install/consumer/main.cpp" "${libs[@]}" -o "$work/consumer_pc" ||
+  fail "the pkg-config build fails"
+got=$(env -u LD_LIBRARY_PATH "$work/consumer_pc" "${point[@]}")
 [[ $got == "$expected" ]] || fail "pkg-config consumer: c = $got, dfvn-sample field: $expected"
 echo "ok: pkg-config consumer: c = $got"

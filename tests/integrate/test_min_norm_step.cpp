@@ -1,4 +1,4 @@
-#include "integrate/min_norm_step.hpp"
+#include "dfvn/integrate/min_norm_step.hpp"
 
 #include <limits>
 

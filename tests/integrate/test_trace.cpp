@@ -1,4 +1,4 @@
-#include "integrate/trace.hpp"
+#include "dfvn/integrate/trace.hpp"
 
 #include <algorithm>
 #include <cmath>

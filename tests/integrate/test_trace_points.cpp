@@ -1,8 +1,8 @@
-#include "integrate/trace_points.hpp"
+#include "dfvn/integrate/trace_points.hpp"
 
 #include <vector>
 
-#include "core/hash.hpp"
+#include "dfvn/core/hash.hpp"
 #include "test_support.hpp"
 
 namespace dfvn {

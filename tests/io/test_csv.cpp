@@ -1,4 +1,4 @@
-#include "io/csv.hpp"
+#include "dfvn/io/csv.hpp"
 
 #include <gtest/gtest.h>
 

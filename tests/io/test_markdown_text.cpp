@@ -1,5 +1,5 @@
 // markdown_as_plain_text: what `reproduce` prints to a terminal.
-#include "io/markdown_text.hpp"
+#include "dfvn/io/markdown_text.hpp"
 
 #include <gtest/gtest.h>
 

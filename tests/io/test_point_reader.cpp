@@ -1,4 +1,4 @@
-#include "io/point_reader.hpp"
+#include "dfvn/io/point_reader.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,8 +6,8 @@
 #include <sstream>
 #include <string>
 
-#include "io/csv.hpp"
-#include "io/point_file.hpp"
+#include "dfvn/io/csv.hpp"
+#include "dfvn/io/point_file.hpp"
 
 namespace dfvn {
 namespace {

@@ -1,10 +1,10 @@
 // Quintic gradient noise: analytic gradient, C2 continuity across cell faces, lattice values, and the
 // closed-form moments (k_eff, RMS |c| = 1) measured over space, in every dimension 2..8.
-#include "noise/gradient_noise.hpp"
+#include "dfvn/noise/gradient_noise.hpp"
 
 #include <cmath>
 
-#include "field/dfvn_field.hpp"
+#include "dfvn/field/dfvn_field.hpp"
 #include "test_support.hpp"
 
 namespace dfvn {

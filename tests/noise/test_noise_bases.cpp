@@ -1,14 +1,14 @@
 // Properties every noise basis must have, swept over every basis and dimension 2..8: analytic
 // gradients, C2 continuity along fine segments, seeded determinism, independent functions, and the
 // closed-form k_eff each basis reports.
-#include "noise/noise_functions.hpp"
+#include "dfvn/noise/noise_functions.hpp"
 
 #include <cmath>
 #include <numbers>
 #include <vector>
 
-#include "noise/quintic_fade.hpp"
-#include "noise/turning_bands.hpp"
+#include "dfvn/noise/quintic_fade.hpp"
+#include "dfvn/noise/turning_bands.hpp"
 #include "test_support.hpp"
 
 namespace dfvn {

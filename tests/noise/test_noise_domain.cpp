@@ -1,6 +1,6 @@
 // The supported domain of the noise (noise/noise_domain.hpp): finite values and gradients everywhere
 // inside it, a clear exception at every entry point outside it.
-#include "noise/noise_domain.hpp"
+#include "dfvn/noise/noise_domain.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "field/dfvn_field.hpp"
-#include "field/evaluate_points.hpp"
-#include "io/csv.hpp"
-#include "integrate/trace.hpp"
-#include "noise/simplex_noise.hpp"
+#include "dfvn/field/dfvn_field.hpp"
+#include "dfvn/field/evaluate_points.hpp"
+#include "dfvn/io/csv.hpp"
+#include "dfvn/integrate/trace.hpp"
+#include "dfvn/noise/simplex_noise.hpp"
 #include "test_support.hpp"
 
 namespace dfvn {

@@ -4,9 +4,9 @@
 #include <cstdio>
 #include <numbers>
 
-#include "core/simd.hpp"
-#include "noise/noise_functions.hpp"
-#include "noise/turning_bands.hpp"
+#include "dfvn/core/simd.hpp"
+#include "dfvn/noise/noise_functions.hpp"
+#include "dfvn/noise/turning_bands.hpp"
 #include "test_support.hpp"
 
 namespace dfvn {

@@ -1,4 +1,4 @@
-#include "noise/simplex_noise.hpp"
+#include "dfvn/noise/simplex_noise.hpp"
 
 #include <cmath>
 

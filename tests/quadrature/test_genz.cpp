@@ -1,4 +1,4 @@
-#include "quadrature/genz.hpp"
+#include "dfvn/quadrature/genz.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
 // A reduced CNJ study (3D, one seed, two frequencies): the matching of the jitter runs, the measures,
 // and the reading.
-#include "reproduce/cnj_study.hpp"
+#include "dfvn/reproduce/cnj_study.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "sampling/curl_noise_jitter.hpp"
+#include "dfvn/sampling/curl_noise_jitter.hpp"
 
 #include <cmath>
 #include <numbers>

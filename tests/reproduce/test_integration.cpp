@@ -1,4 +1,4 @@
-#include "reproduce/integration.hpp"
+#include "dfvn/reproduce/integration.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Reduced reproductions of Table 1 (3D-4D) and Table 2 (a small image), asserting the paper's points.
-#include "reproduce/reproduce.hpp"
+#include "dfvn/reproduce/reproduce.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "reproduce/paper_tables.hpp"
+#include "dfvn/reproduce/paper_tables.hpp"
 
 namespace dfvn {
 namespace {

@@ -1,4 +1,4 @@
-#include "sampling/annulus.hpp"
+#include "dfvn/sampling/annulus.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "core/dimension.hpp"
+#include "dfvn/core/dimension.hpp"
 
 namespace dfvn {
 namespace {

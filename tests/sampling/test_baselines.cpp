@@ -5,9 +5,9 @@
 #include <cmath>
 #include <vector>
 
-#include "core/parallel.hpp"
-#include "sampling/halton.hpp"
-#include "sampling/latin_hypercube.hpp"
+#include "dfvn/core/parallel.hpp"
+#include "dfvn/sampling/halton.hpp"
+#include "dfvn/sampling/latin_hypercube.hpp"
 
 namespace dfvn {
 namespace {

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "field/constraint.hpp"
-#include "sampling/curl_noise_jitter.hpp"
-#include "sampling/sphere_jitter.hpp"
-#include "stats/geodesic.hpp"
+#include "dfvn/field/constraint.hpp"
+#include "dfvn/sampling/curl_noise_jitter.hpp"
+#include "dfvn/sampling/sphere_jitter.hpp"
+#include "dfvn/stats/geodesic.hpp"
 
 namespace dfvn {
 namespace {

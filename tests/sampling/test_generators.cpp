@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "core/parallel.hpp"
-#include "sampling/curl_noise_jitter.hpp"
-#include "sampling/jitter.hpp"
-#include "sampling/lattice.hpp"
+#include "dfvn/core/parallel.hpp"
+#include "dfvn/sampling/curl_noise_jitter.hpp"
+#include "dfvn/sampling/jitter.hpp"
+#include "dfvn/sampling/lattice.hpp"
 
 namespace dfvn {
 namespace {

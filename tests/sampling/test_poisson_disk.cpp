@@ -1,4 +1,4 @@
-#include "sampling/poisson_disk.hpp"
+#include "dfvn/sampling/poisson_disk.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "core/hash.hpp"
-#include "stats/nearest_neighbour.hpp"
+#include "dfvn/core/hash.hpp"
+#include "dfvn/stats/nearest_neighbour.hpp"
 
 namespace dfvn {
 namespace {

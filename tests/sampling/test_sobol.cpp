@@ -1,4 +1,4 @@
-#include "sampling/sobol.hpp"
+#include "dfvn/sampling/sobol.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/parallel.hpp"
+#include "dfvn/core/parallel.hpp"
 
 namespace dfvn {
 namespace {

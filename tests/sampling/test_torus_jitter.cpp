@@ -5,11 +5,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/hash.hpp"
-#include "field/constraint.hpp"
-#include "integrate/trace_table.hpp"
-#include "sampling/curl_noise_jitter.hpp"
-#include "sampling/jitter.hpp"
+#include "dfvn/core/hash.hpp"
+#include "dfvn/field/constraint.hpp"
+#include "dfvn/integrate/trace_table.hpp"
+#include "dfvn/sampling/curl_noise_jitter.hpp"
+#include "dfvn/sampling/jitter.hpp"
 
 namespace dfvn {
 namespace {

@@ -1,4 +1,4 @@
-#include "stats/discrepancy.hpp"
+#include "dfvn/stats/discrepancy.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <sstream>
 #include <string>
 
-#include "io/csv.hpp"
-#include "sampling/jitter.hpp"
+#include "dfvn/io/csv.hpp"
+#include "dfvn/sampling/jitter.hpp"
 
 namespace dfvn {
 namespace {

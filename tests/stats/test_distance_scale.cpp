@@ -1,7 +1,7 @@
 // Issue 23: statistics at any scale. A set scaled by 10^k (with its domain) has the statistics of the
 // unscaled set times 10^k, or the scale is refused with one line naming the bound; extreme domains
 // crashed the KD-tree (squared distances Inf) and wrote Inf and NaN.
-#include "stats/distance_scale.hpp"
+#include "dfvn/stats/distance_scale.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,9 +9,9 @@
 #include <cstdlib>
 #include <string>
 
-#include "sampling/jitter.hpp"
-#include "stats/point_set_statistics.hpp"
-#include "stats/radial_distribution.hpp"
+#include "dfvn/sampling/jitter.hpp"
+#include "dfvn/stats/point_set_statistics.hpp"
+#include "dfvn/stats/radial_distribution.hpp"
 
 namespace dfvn {
 namespace {

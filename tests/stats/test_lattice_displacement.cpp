@@ -1,10 +1,10 @@
-#include "stats/lattice_displacement.hpp"
+#include "dfvn/stats/lattice_displacement.hpp"
 
 #include <cmath>
 #include <numbers>
 
-#include "sampling/jitter.hpp"
-#include "sampling/lattice.hpp"
+#include "dfvn/sampling/jitter.hpp"
+#include "dfvn/sampling/lattice.hpp"
 #include "test_support.hpp"
 
 namespace dfvn {

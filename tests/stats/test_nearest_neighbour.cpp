@@ -1,9 +1,9 @@
-#include "stats/nearest_neighbour.hpp"
+#include "dfvn/stats/nearest_neighbour.hpp"
 
 #include <gtest/gtest.h>
 
-#include "sampling/jitter.hpp"
-#include "sampling/poisson_disk.hpp"
+#include "dfvn/sampling/jitter.hpp"
+#include "dfvn/sampling/poisson_disk.hpp"
 
 namespace dfvn {
 namespace {

@@ -1,13 +1,13 @@
 // Minimum-image statistics on the torus (stats/periodic_neighbours.hpp, RdfOptions::periodic).
-#include "stats/periodic_neighbours.hpp"
+#include "dfvn/stats/periodic_neighbours.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "sampling/jitter.hpp"
-#include "stats/nearest_neighbour.hpp"
-#include "stats/radial_distribution.hpp"
+#include "dfvn/sampling/jitter.hpp"
+#include "dfvn/stats/nearest_neighbour.hpp"
+#include "dfvn/stats/radial_distribution.hpp"
 
 namespace dfvn {
 namespace {

@@ -1,12 +1,12 @@
-#include "stats/radial_distribution.hpp"
+#include "dfvn/stats/radial_distribution.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "sampling/jitter.hpp"
-#include "sampling/lattice.hpp"
+#include "dfvn/sampling/jitter.hpp"
+#include "dfvn/sampling/lattice.hpp"
 
 namespace dfvn {
 namespace {

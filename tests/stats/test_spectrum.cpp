@@ -1,11 +1,11 @@
-#include "stats/spectrum.hpp"
+#include "dfvn/stats/spectrum.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "sampling/jitter.hpp"
-#include "sampling/lattice.hpp"
+#include "dfvn/sampling/jitter.hpp"
+#include "dfvn/sampling/lattice.hpp"
 
 namespace dfvn {
 namespace {

@@ -1,12 +1,22 @@
 // Uses the installed libdfvn: the field c(x) at the point given on the command line, in 3D, seed 7,
 // frequency 0.5, printed as `dfvn-sample field` prints its c columns (17 significant digits).
 // Usage: consumer X0 X1 X2
+// The project has folders core/, io/, stats/, sampling/ and field/ of its own, on its include path
+// before the library's, with headers named like libdfvn's: the library's headers must never pick them.
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
-#include <dfvn/field/dfvn_field.hpp>
-#include <dfvn/io/csv.hpp>
+#include <dfvn/dfvn.hpp>
+
+// The consumer's own headers, after the library's (they refuse to be included before this macro).
+#define CONSUMER_OWN_HEADERS
+#include "core/point_set.hpp"
+#include "core/progress.hpp"
+#include "field/dfvn_field.hpp"
+#include "io/csv.hpp"
+#include "sampling/lattice.hpp"
+#include "stats/nearest_neighbour.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 4) {
@@ -23,5 +33,7 @@ int main(int argc, char** argv) {
     dfvn::append_double(line, c[j]);
   }
   std::printf("%s\n", line.c_str());
+  // The consumer's own headers are its own: each names itself.
+  if (std::string(consumer_core_progress) != "core/progress" || std::string(consumer_io_csv) != "io/csv") return 3;
   return 0;
 }

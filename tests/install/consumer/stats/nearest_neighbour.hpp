@@ -1,0 +1,8 @@
+// The consumer's own stats/nearest_neighbour.hpp, named like one of libdfvn's headers on purpose: the installed headers
+// include each other as "dfvn/<folder>/<file>.hpp", so none of them may ever resolve to this file
+// (it would stop the build), while main.cpp includes it on purpose after the library's headers.
+#pragma once
+#ifndef CONSUMER_OWN_HEADERS
+#error "a dfvn header included the consumer's own stats/nearest_neighbour.hpp instead of its own"
+#endif
+inline constexpr const char* consumer_stats_nearest_neighbour = "stats/nearest_neighbour";
