@@ -8,6 +8,7 @@
 // Gray-code walk, Owen-scrambled with owen_scramble, and the 20 bits below them from the same hashes
 // (sampling/sobol.cpp); the Halton digit permutations drawn from the same stream (sampling/halton.cpp);
 // random_unit of Stream::random_points. tests/python/test_qmc.py checks that both ways give the same bits.
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -21,6 +22,7 @@
 #include <pybind11/pybind11.h>
 
 #include "core/hash.hpp"
+#include "core/parallel.hpp"
 #include "sampling/halton.hpp"
 #include "sampling/jitter.hpp"
 #include "sampling/sobol.hpp"
@@ -30,9 +32,12 @@ namespace dfvn::python {
 
 namespace {
 
-// Sobol point `index`'s coordinates from its 32 digits per dimension, as sampling/sobol.cpp's fill_block.
-void sobol_from(const SobolSequence& sequence, std::uint64_t start, std::uint64_t count, int d, Scramble scramble,
-                std::uint64_t seed, double* out) {
+// Sobol points [start, end) from their 32 digits per dimension, as sampling/sobol.cpp's fill_block;
+// `out` holds point `first` at its start.
+void sobol_block(const SobolSequence& sequence, std::uint64_t first, std::uint64_t start, std::uint64_t end, int d,
+                 Scramble scramble, std::uint64_t seed, double* out) {
+  const std::uint64_t count = end - start;
+  out += (start - first) * static_cast<std::uint64_t>(d);
   std::vector<std::uint32_t> digits(static_cast<std::size_t>(d));
   for (int j = 0; j < d; ++j) digits[static_cast<std::size_t>(j)] = sequence.digits(static_cast<std::uint32_t>(start), j);
   const std::uint64_t stream = stream_key(seed, Stream::sobol_scramble);
@@ -59,6 +64,18 @@ void sobol_from(const SobolSequence& sequence, std::uint64_t start, std::uint64_
   }
 }
 
+// Blocks of 4096 points, each from the digits of its first point: the same bits on any thread count.
+void sobol_from(const SobolSequence& sequence, std::uint64_t start, std::uint64_t count, int d, Scramble scramble,
+                std::uint64_t seed, int threads, double* out) {
+  constexpr std::uint64_t kBlock = 4096;
+  const auto blocks = static_cast<std::int64_t>((count + kBlock - 1) / kBlock);
+#pragma omp parallel for schedule(static) num_threads(resolve_threads(threads)) if (worth_threads(count * static_cast<std::uint64_t>(d)))
+  for (std::int64_t b = 0; b < blocks; ++b) {
+    const std::uint64_t begin = start + static_cast<std::uint64_t>(b) * kBlock;
+    sobol_block(sequence, start, begin, std::min(start + count, begin + kBlock), d, scramble, seed, out);
+  }
+}
+
 // As sampling/halton.cpp's digit_permutations: one permutation of the base's digits per significant
 // digit position, drawn from (seed, axis * 1024 + position, k).
 std::vector<std::vector<int>> halton_permutations(int base, int axis, std::uint64_t seed) {
@@ -78,12 +95,15 @@ std::vector<std::vector<int>> halton_permutations(int base, int axis, std::uint6
   return permutations;
 }
 
-void halton_from(std::uint64_t start, std::uint64_t count, int d, bool scramble, std::uint64_t seed, double* out) {
+void halton_from(std::uint64_t start, std::uint64_t count, int d, bool scramble, std::uint64_t seed, int threads,
+                 double* out) {
   for (int k = 0; k < d; ++k) {
     const int base = halton_base(k);
     const auto b = static_cast<std::uint64_t>(base);
     const auto permutations = scramble ? halton_permutations(base, k, seed) : std::vector<std::vector<int>>{};
-    for (std::uint64_t i = start; i < start + count; ++i) {
+#pragma omp parallel for schedule(static) num_threads(resolve_threads(threads)) if (worth_threads(count * static_cast<std::uint64_t>(d)))
+    for (std::int64_t at = 0; at < static_cast<std::int64_t>(count); ++at) {
+      const std::uint64_t i = start + static_cast<std::uint64_t>(at);
       double unit = 0.0;
       if (!scramble) {
         unit = radical_inverse(i, base);
@@ -131,14 +151,15 @@ py::array_t<double> sequence(const std::string& method, int d, std::uint64_t sta
   {
     py::gil_scoped_release unlocked;
     if (method == "sobol") {
-      sobol_from(SobolSequence(d), start, count, d, owen, seed, out.data());
+      sobol_from(SobolSequence(d), start, count, d, owen, seed, threads, out.data());
     } else if (method == "halton") {
-      halton_from(start, count, d, scramble, seed, out.data());
+      halton_from(start, count, d, scramble, seed, threads, out.data());
     } else {
-      for (std::uint64_t i = 0; i < count; ++i)
+#pragma omp parallel for schedule(static) num_threads(resolve_threads(threads)) if (worth_threads(out.size()))
+      for (std::int64_t at = 0; at < static_cast<std::int64_t>(count); ++at)
         for (int j = 0; j < d; ++j)
-          out[i * static_cast<std::uint64_t>(d) + static_cast<std::uint64_t>(j)] =
-              random_unit(seed, Stream::random_points, start + i, static_cast<std::uint64_t>(j));
+          out[static_cast<std::uint64_t>(at) * static_cast<std::uint64_t>(d) + static_cast<std::uint64_t>(j)] =
+              random_unit(seed, Stream::random_points, start + static_cast<std::uint64_t>(at), static_cast<std::uint64_t>(j));
     }
   }
   return array_owning(std::move(out), count, static_cast<std::size_t>(d));

@@ -226,9 +226,15 @@ def test_engines_refuse_bad_arguments_in_one_line(call, error, words):
     assert "\n" not in str(raised.value)
 
 
-def test_workers_never_change_the_points():
-    a = dfvn.Sobol(6, seed=3).random(2**14, workers=1)
-    np.testing.assert_array_equal(a, dfvn.Sobol(6, seed=3).random(2**14, workers=-1))
+@pytest.mark.parametrize("engine_class", [dfvn.Sobol, dfvn.Halton, dfvn.Random])
+def test_workers_never_change_the_points(engine_class):
+    a = engine_class(6, seed=3).random(2**14, workers=1)
+    np.testing.assert_array_equal(a, engine_class(6, seed=3).random(2**14, workers=-1))
+    # Past point 0 the points are computed by index, in blocks over the threads: the same bits.
+    whole = engine_class(6, seed=3).random(3 * 2**14, workers=1)
+    for workers in (1, 2, -1):
+        later = engine_class(6, seed=3).fast_forward(2**14 + 3)
+        np.testing.assert_array_equal(later.random(2**15 - 3, workers=workers), whole[2**14 + 3:])
     np.testing.assert_array_equal(dfvn.CNJ(3, seed=3).random(grid=6, workers=1),
                                   dfvn.CNJ(3, seed=3).random(grid=6, workers=2))
 
