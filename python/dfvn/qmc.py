@@ -228,6 +228,8 @@ class _SetEngine(QMCEngine):
         workers: threads, -1 = all cores (default None: the engine's `threads`); the set never depends on it.
         """
         if grid is not None:
+            if n != 1:
+                raise ValueError("give one of n (a point count) and grid (K: the K^d lattice), not both")
             size = dict(grid=_count(grid, "grid", 0))
         else:
             size = dict(n=_count(n, "n", 0))
@@ -299,7 +301,7 @@ class CNJ(_SetEngine):
         return super()._why_requested(requested, k)
 
     def _why_fewer(self, missing, saturated, radius):
-        return f"{missing} dropped: they left the cube (domain_mode='drop')"
+        return f"{missing} dropped: they left the {self._options['domain'] or 'cube'} (domain_mode='drop')"
 
 
 class Jitter(_SetEngine):
@@ -407,20 +409,23 @@ def sample(method, dim, *, grid=None, n=None, seed=1, protocol="unit", scramble=
     if n is not None:
         n = _count(n, "n", 1)
     engine = ENGINES[method]
+    cnj = dict(noise=noise, cycles_per_spacing=cycles_per_spacing, step_scale=step_scale, integrator=integrator,
+               reprojection=reprojection, steps=steps, domain=domain, domain_mode=domain_mode, bound=bound)
+    pds = dict(radius=radius, ncandidates=ncandidates)
     if issubclass(engine, _Sequence):
         # The count and the domain under the protocol (Sobol under 'paper' lives on [0, 0.1 K]^dim);
-        # validates every option as the command line does.
-        requested, _k, _lo, side = _core._plan(method, dim, grid=grid, n=n, seed=0, protocol=protocol,
-                                               scramble=bool(scramble), threads=threads, max_memory_gib=max_memory_gib)
+        # validates every option as the command line does, those of the other methods included.
+        requested, _k, lo, side = _core._plan(method, dim, grid=grid, n=n, seed=0, protocol=protocol,
+                                              scramble=bool(scramble), threads=threads, max_memory_gib=max_memory_gib,
+                                              **cnj, **pds)
+        assert lo == 0.0
         options = dict(scramble=scramble) if method != "random" else {}
         made = engine(dim, seed=seed, threads=threads, **options)
         points = _caller_warned(lambda: made.random(requested))
         if side != 1.0:
             points *= side  # as the library's lo + side * u with lo = 0: the same bits
         return points
-    cnj = dict(noise=noise, cycles_per_spacing=cycles_per_spacing, step_scale=step_scale, integrator=integrator,
-               reprojection=reprojection, steps=steps, domain=domain, domain_mode=domain_mode, bound=bound)
-    options = {"cnj": cnj, "jitter-matched": cnj, "pds": dict(radius=radius, ncandidates=ncandidates)}.get(method, {})
+    options = {"cnj": cnj, "jitter-matched": cnj, "pds": pds}.get(method, {})
     made = engine(dim, seed=seed, protocol=protocol, threads=threads, max_memory_gib=max_memory_gib, **options)
     return _caller_warned(lambda: made.random(n) if grid is None else made.random(grid=grid))
 
