@@ -1,4 +1,5 @@
-// dfvn.nn_stats and dfvn.rdf: the statistics of `dfvn-sample stats` and `--rdf` on any point array.
+// dfvn.nn_stats and dfvn.rdf: the statistics of `dfvn-sample stats` and `--rdf` on any point array;
+// dfvn._core._discrepancy, under dfvn.discrepancy (python/dfvn/qmc.py), as scipy.stats.qmc.discrepancy.
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -7,6 +8,7 @@
 #include <pybind11/pybind11.h>
 
 #include "dfvn/core/dimension.hpp"
+#include "dfvn/stats/discrepancy.hpp"
 #include "dfvn/stats/distance_scale.hpp"
 #include "dfvn/stats/point_set_statistics.hpp"
 #include "dfvn/stats/radial_distribution.hpp"
@@ -64,6 +66,15 @@ py::tuple rdf(const PointArray& array, double domain_side, double r_max, int bin
   return py::make_tuple(array_owning(std::move(curve.r)), array_owning(std::move(curve.g)));
 }
 
+// The library's discrepancy of a set in [0,1]^N (N >= 1); a point outside raises ValueError.
+double discrepancy_of(const PointArray& array, const std::string& method, int threads) {
+  const DiscrepancyKind kind = parse_discrepancy(method);
+  const PointRows rows = point_rows(array, 1, 1 << 20, 1);
+  PointSet points{rows.dimension, Coordinates(rows.data, rows.data + rows.rows * rows.dimension), Box{0.0, 1.0}};
+  py::gil_scoped_release unlocked;
+  return discrepancy(points, kind, threads);
+}
+
 }  // namespace
 
 void bind_stats(py::module_& module) {
@@ -76,6 +87,8 @@ Returns a dict: points, min, q01 (1% quantile), median, mean and median_scaled (
 (points / volume)^(1/N): 1 for a cubic lattice), as `dfvn-sample stats` computes them. knn: the
 exact KD-tree, 'nanoflann' or 'flann' (the same distances). periodic: minimum-image distances on the
 torus [0, domain_side)^N (`dfvn-sample stats --periodic`; as scipy's cKDTree(..., boxsize=side)).)");
+  module.def("_discrepancy", &discrepancy_of, "points"_a, "method"_a, "threads"_a = 0,
+             "Internal: the discrepancy of points in [0,1]^N (dfvn.discrepancy).");
   module.def("rdf", &rdf, "points"_a, py::kw_only(), "domain_side"_a = 1.0, "r_max"_a = 0.0, "bins"_a = 50,
              "max_queries"_a = 20000, "seed"_a = 1, "periodic"_a = false, "threads"_a = 0,
              R"(Radial distribution function g(r) of a point set in [0, domain_side]^N, N = 2..8, with the

@@ -1,4 +1,5 @@
-// The Python module `dfvn`: the library's field, tracing, samplers and statistics on NumPy arrays.
+// dfvn._core, the compiled part of the Python package `dfvn` (python/dfvn/): the library's field,
+// tracing, samplers and statistics on NumPy arrays.
 // Names follow scipy.stats.qmc where it has one (n, seed, scramble, radius, ncandidates).
 #include <pybind11/pybind11.h>
 
@@ -19,7 +20,7 @@ std::string python_message(std::string message) {
   static const std::pair<std::string_view, std::string_view> kKeywords[] = {
       {"--dim", "dim"},           {"--grid", "grid"},           {"-n", "n"},
       {"--seed", "seed"},         {"--threads", "threads"},     {"--methods", "method"},
-      {"--frequency", "frequency"}, {"--step-scale", "step_scale"}, {"--steps", "steps"},
+      {"--frequency", "frequency"}, {"--cycles-per-spacing", "cycles_per_spacing"}, {"--step-scale", "step_scale"}, {"--steps", "steps"},
       {"--noise", "noise"},       {"--integrator", "integrator"}, {"--reproject", "reprojection"},
       {"--protocol", "protocol"}, {"--scramble", "scramble"},   {"--pds-radius", "radius"},
       {"--pds-candidates", "ncandidates"}, {"--max-memory GIB", "max_memory_gib"},
@@ -48,9 +49,10 @@ std::string python_message(std::string message) {
 void bind_field(pybind11::module_& module);
 void bind_sampling(pybind11::module_& module);
 void bind_stats(pybind11::module_& module);
+void bind_sequence(pybind11::module_& module);
 }  // namespace dfvn::python
 
-PYBIND11_MODULE(dfvn, module) {
+PYBIND11_MODULE(_core, module) {
   module.doc() =
       "Divergence-free vector noise (DFVN) in 2..8 dimensions, curl-noise jittering and point-set statistics\n"
       "(after 'Improving Curl Noise', SIGGRAPH Asia 2025). Point sets are (points, N) float64 arrays;\n"
@@ -72,4 +74,5 @@ PYBIND11_MODULE(dfvn, module) {
   dfvn::python::bind_field(module);
   dfvn::python::bind_sampling(module);
   dfvn::python::bind_stats(module);
+  dfvn::python::bind_sequence(module);
 }

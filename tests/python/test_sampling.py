@@ -27,7 +27,7 @@ def test_sample_options_reach_the_generator_as_on_the_command_line(cli, tmp_path
         "--domain", "ball", "--bound", "ramp",
         "--points", tmp_path, "--format", "npy", "--stats", tmp_path / "stats.csv", "--quiet")
     common = dict(grid=4, seed=8, scramble=False)
-    cnj = dfvn.sample("cnj", 4, noise="quintic-gradient", frequency=0.35, step_scale=0.3, integrator="euler",
+    cnj = dfvn.sample("cnj", 4, noise="quintic-gradient", cycles_per_spacing=0.35, step_scale=0.3, integrator="euler",
                       reprojection="newton", steps=3, domain="ball", bound="ramp", **common)
     np.testing.assert_array_equal(cnj, np.load(tmp_path / "cnj.npy"))
     np.testing.assert_array_equal(dfvn.sample("sobol", 4, **common), np.load(tmp_path / "sobol.npy"))
@@ -116,7 +116,10 @@ def test_same_seed_same_bits_other_seed_other_points_any_threads():
         (("cnj", 3), {"grid": 4, "bound": "mirror"}, ValueError, "mirror"),
         (("jitter-matched", 3), {"grid": 4, "domain": "ball"}, ValueError, "jitter-matched"),
         (("sobol", 3), {"grid": 4, "colour": "red"}, TypeError, "colour|argument"),
-        (("sobol", 3), {"n": -5}, TypeError, ""),
+        (("sobol", 3), {"n": -5}, ValueError, "n must be at least 1"),
+        (("sobol", 3), {"n": 2.5}, TypeError, "n must be an int"),
+        (("cnj", 3), {"grid": 4, "frequency": 0.2}, TypeError, "cycles_per_spacing"),
+        (("cnj", 3), {"grid": 4, "seed": "one"}, TypeError, "seed must be None, an int or a numpy.random.Generator"),
     ],
 )
 def test_sample_refuses_bad_arguments_with_a_clear_error(args, kwargs, error, words):

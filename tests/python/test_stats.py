@@ -124,7 +124,8 @@ def test_sides_beyond_the_bound_are_refused_naming_it(side):
     [
         (lambda: dfvn.sample("random", 3, n=2**40), r"n=1099511627776 in 3D .* lower n or raise the limit with max_memory_gib"),
         (lambda: dfvn.sample("jitter", 3, grid=100, max_memory_gib=1e-6), r"grid=100 in 3D .* max_memory_gib"),
-        (lambda: dfvn.sample("cnj", 3, grid=4, frequency=1e15), r"frequency=1e\+15 .* grid=4"),
+        (lambda: dfvn.sample("cnj", 3, grid=4, cycles_per_spacing=1e15), r"cycles_per_spacing=1e\+15 .* grid=4"),
+        (lambda: dfvn.CNJ(3, cycles_per_spacing=1e15).random(grid=4), r"cycles_per_spacing=1e\+15 .* grid=4"),
         (lambda: dfvn.nn_stats(np.full((3, 2), 0.75), domain_side=0.5), r"give the side with domain_side"),
     ],
 )
