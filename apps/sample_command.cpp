@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
@@ -91,12 +92,15 @@ struct SampleCommand : Subcommand {
         ->capture_default_str()
         ->check(kUnsignedInteger);
     cmd->add_option("--points", points_dir,
-                    "Write each point set to DIR/<method>.<format>; '-' = standard output (one method only)");
+                    "Write each method's point sets to DIR/<method>.<format>, the M sets of --sets M in one file;\n"
+                    "'-' = standard output (one method only)");
     format_option = cmd->add_option("--format", format,
-                                    "Point file format (with --points): csv (header x0..x{N-1}), npy (float64, (points, N))\n"
-                                    "or dat (coordinates separated by spaces, no header: UTK's and pbrt's pspec text format)")
+                                    "Point file format (with --points): csv (header x0..x{N-1}; one set only), npy (float64,\n"
+                                    "(points, N); M sets: (M, points, N), sets of one size), dat (coordinates separated by\n"
+                                    "spaces, no header, a line '#' between sets: UTK's and pbrt's pspec text format) or bin\n"
+                                    "(UTK's binary: per set a uint32 point count, then the float64 coordinates)")
                         ->capture_default_str()
-                        ->check(CLI::IsMember({"csv", "npy", "dat"}));
+                        ->check(CLI::IsMember({"csv", "npy", "dat", "bin"}));
     cmd->add_flag("--no-stats", no_stats, "Generate the point sets only (needs --points): no statistics and no stats CSV");
     cmd->add_option("--json", json_path,
                     "Also write the run as JSON: parameters, every method's statistics and derived values ('-' = standard\n"
@@ -177,8 +181,10 @@ struct SampleCommand : Subcommand {
     cmd->add_option("--max-memory", config.max_memory_gib, "Memory limit in GiB for the point sets; 0 = 80% of the machine's")
         ->capture_default_str()
         ->check(kNonNegativeFinite);
-    cmd->add_option("--realizations", realizations,
-                    "Run seeds s..s+R-1 and add per method the mean and sd of every statistic (rows seed = mean, sd)")
+    cmd->add_option("-m,--sets,--realizations", realizations,
+                    "M independently seeded sets (realizations; -m/--sets as in UTK): seeds s..s+M-1; the statistics\n"
+                    "add per method the mean and sd of every statistic (rows seed = mean, sd); --points writes the M\n"
+                    "sets of a method into one file")
         ->capture_default_str()
         ->check(CLI::Range(1, 100000));
     progress.add_to(*cmd);
@@ -245,11 +251,16 @@ struct SampleCommand : Subcommand {
     std::string rdf = dfvn::rdf_csv_header();
     std::vector<std::string> realization_rows;
     std::vector<dfvn::SamplingRealization> runs;
+    // --sets M > 1 with --points: each method's M sets, written into one file once all are made.
+    std::vector<std::vector<dfvn::PointSet>> sets_of(config.methods.size());
+    const bool one_file_of_sets = !points_dir.empty() && realizations > 1;
     // Realization r uses seed s + r; every statistic is then summarised as mean and sd per method.
     for (int realization = 0; realization < realizations; ++realization) {
       config.seed = common.seed + static_cast<std::uint64_t>(realization);
       auto results = dfvn::run_sampling(config, false, reporter->callback(), [&](const dfvn::MethodResult& r) {
-        if (!points_dir.empty()) {
+        if (one_file_of_sets) {
+          sets_of[method_index(r.plan.method)].push_back(r.points);
+        } else if (!points_dir.empty()) {
           reporter->finish();  // the live line stays off standard output's terminal
           dfvn::write_point_file(point_file(r.plan.method), r.points, point_format);
         }
@@ -267,6 +278,19 @@ struct SampleCommand : Subcommand {
       runs.push_back({config.seed, std::move(results)});
     }
     reporter->complete();
+    if (one_file_of_sets) {
+      // Every file's sets are checked (npy: one size) before the first file is written.
+      for (std::size_t m = 0; m < sets_of.size(); ++m) {
+        try {
+          dfvn::check_point_sets_fit(sets_of[m], point_format);
+        } catch (const std::invalid_argument& e) {
+          throw std::invalid_argument(fmt::format("--points: {}'s {} sets: {}", dfvn::to_string(config.methods[m]),
+                                                  sets_of[m].size(), e.what()));
+        }
+      }
+      for (std::size_t m = 0; m < sets_of.size(); ++m)
+        dfvn::write_point_sets_file(point_file(config.methods[m]), sets_of[m], point_format);
+    }
     if (realizations > 1)
       stats += dfvn::realization_summary_rows(stats.substr(0, stats.find('\n')), realization_rows, {"dim", "grid", "method"}, "seed");
     config.seed = common.seed;
@@ -280,10 +304,18 @@ struct SampleCommand : Subcommand {
     if (format_option->count() > 0 && points_dir.empty())
       throw std::invalid_argument("--format " + format + " applies to --points, which is not given");
     if (no_stats && points_dir.empty()) throw std::invalid_argument("--no-stats writes only point sets: give --points DIR (or -)");
-    if (no_stats && (stats_option->count() > 0 || !rdf_path.empty() || realizations > 1))
-      throw std::invalid_argument("--no-stats computes no statistics: drop --stats, --rdf and --realizations");
-    if (realizations > 1 && (!points_dir.empty() || !rdf_path.empty()))
-      throw std::invalid_argument("--points and --rdf take one realization; drop them or --realizations");
+    if (no_stats && (stats_option->count() > 0 || !rdf_path.empty()))
+      throw std::invalid_argument("--no-stats computes no statistics: drop --stats and --rdf");
+    if (realizations > 1 && !rdf_path.empty())
+      throw std::invalid_argument("--rdf takes one realization; drop it or --sets");
+    if (realizations > 1 && !points_dir.empty() && format == "csv")
+      throw std::invalid_argument(fmt::format("--points writes the {} sets of --sets into one file: --format dat, npy or bin "
+                                              "(csv holds one set)",
+                                              realizations));
+    if (realizations > 1 && !points_dir.empty() && format == "npy" &&
+        std::find(config.methods.begin(), config.methods.end(), dfvn::Method::pds) != config.methods.end())
+      throw std::invalid_argument("--format npy holds the sets of --sets as one array (sets, points, N), but pds's sets "
+                                  "differ in size from seed to seed: use dat or bin");
     if (points_dir == "-" && config.methods.size() != 1)
       throw std::invalid_argument(fmt::format("--points - writes one point set to standard output; --methods names {}",
                                               config.methods.size()));
@@ -297,6 +329,9 @@ struct SampleCommand : Subcommand {
                    static_cast<unsigned long long>(r.plan.requested), *r.facts.radius);
   }
 
+  std::size_t method_index(dfvn::Method m) const {
+    return static_cast<std::size_t>(std::find(config.methods.begin(), config.methods.end(), m) - config.methods.begin());
+  }
   std::string point_file_name(dfvn::Method m) const { return std::string(dfvn::to_string(m)) + "." + format; }
   std::string point_file(dfvn::Method m) const {
     return points_dir == "-" ? points_dir : (std::filesystem::path(points_dir) / point_file_name(m)).string();

@@ -2,6 +2,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -12,10 +14,12 @@
 #include "dfvn/experiment/json_report.hpp"
 #include "dfvn/experiment/realizations.hpp"
 #include "dfvn/io/atomic_file.hpp"
+#include "dfvn/io/csv.hpp"
 #include "dfvn/io/point_reader.hpp"
 #include "dfvn/plot/gnuplot.hpp"
 #include "dfvn/stats/distance_scale.hpp"
 #include "dfvn/stats/point_set_statistics.hpp"
+#include "dfvn/stats/radial_distribution.hpp"
 #include "dfvn/stats/spectrum.hpp"
 
 #include "options.hpp"
@@ -23,10 +27,16 @@
 namespace dfvn_cli {
 namespace {
 
+// Standard input's stand-in among the inputs.
+constexpr const char* kStandardInput = "-";
+
 struct StatsCommand : Subcommand {
   CommonOptions common;
-  std::string input;
+  std::vector<std::string> inputs;
   std::string format;
+  int dimension = 0;
+  std::string rdf_path;
+  dfvn::RdfOptions rdf;
   std::string output = "-";
   std::string knn = "nanoflann";
   double domain_side = 1.0;
@@ -43,14 +53,36 @@ struct StatsCommand : Subcommand {
     CLI::App* cmd = parent.add_subcommand(
         "stats",
         "Statistics of any point set in [0,S]^N, N = 1..8: nearest-neighbour summary and, with --discrepancy, the\n"
-        "CD, WD, MD and L2-star discrepancies (as scipy.stats.qmc.discrepancy). One CSV row per set; a dat file\n"
-        "with several sets also gets their mean and sd rows (set = mean, sd).");
-    cmd->add_option("--input", input, "Point file: CSV (optional header), NPY float64/float32 (points, N), or dat\n"
-                                      "(whitespace-separated, '#' lines between sets)")
+        "CD, WD, MD and L2-star discrepancies (as scipy.stats.qmc.discrepancy). One CSV row per set of every\n"
+        "input (columns input, set); inputs with several sets also get their mean and sd rows (set = mean, sd).");
+    // A file or '-' (standard input).
+    const CLI::Validator file_or_standard_input(
+        [](std::string& path) { return path == kStandardInput ? std::string() : CLI::ExistingFile(path); }, "FILE|-");
+    cmd->add_option("--input,inputs", inputs,
+                    "Point files, as --input FILE (repeatable) and/or positional FILE...; '-' = standard input (once;\n"
+                    "needs --format). CSV (optional header), NPY float64/float32 (points, N) or (sets, points, N),\n"
+                    "dat (whitespace-separated, '#' lines between sets) or UTK's binary .bin (one record a set)")
         ->required()
-        ->check(CLI::ExistingFile);
-    cmd->add_option("--format", format, "csv, npy or dat; default: from the extension (.txt = dat)")
-        ->check(CLI::IsMember({"csv", "npy", "dat"}));
+        ->check(file_or_standard_input);
+    cmd->add_option("--format", format,
+                    "csv, npy, dat or bin, for every input; default: each file's extension (.txt = dat); required\n"
+                    "with '-'")
+        ->check(CLI::IsMember({"csv", "npy", "dat", "bin"}));
+    cmd->add_option("-d,--dim", dimension,
+                    "Dimension N of the points; every input must have it. Needed only for a .bin file that reads\n"
+                    "whole in several dimensions (UTK's .bin does not store N); default: each file's own")
+        ->check(CLI::Range(dfvn::kMinInputDimension, dfvn::kMaxInputDimension));
+    cmd->add_option("--rdf", rdf_path,
+                    "Also write the radial distribution function g(r) of every set here (CSV: input,set,dim,r,g; one\n"
+                    "curve a set; 2D..8D; with --periodic on the torus)");
+    cmd->add_option("--rdf-max", rdf.r_max, "Largest r of the RDF; 0 = 2.5 mean spacings")
+        ->capture_default_str()
+        ->check(kNonNegativeFinite);
+    cmd->add_option("--rdf-bins", rdf.bins, "Number of RDF bins")->capture_default_str()->check(CLI::Range(1, 100000));
+    cmd->add_option("--rdf-queries", rdf.max_queries,
+                    "RDF query points: a subset of about this many, drawn with seed 1 in every set (0 = all points)")
+        ->capture_default_str()
+        ->check(kUnsignedInteger);
     cmd->add_option("--domain-side", domain_side, "The points lie in [0, S]^N, S in [2^-1000, 2^1000]")
         ->capture_default_str()
         ->check(kDomainSide);
@@ -75,24 +107,56 @@ struct StatsCommand : Subcommand {
     cmd->callback([this] { run(); });
   }
 
-  void run() {
-    const dfvn::InputFormat input_format =
-        format.empty() ? dfvn::input_format_from_path(input) : dfvn::parse_input_format(format);
-    std::vector<dfvn::PointSet> sets;
+  // The sets of one input, each checked to lie in the domain; `owner` gets the input's index per set.
+  void read_input(std::size_t index, dfvn::InputFormat input_format, std::vector<dfvn::PointSet>& sets,
+                  std::vector<std::size_t>& owner) const {
+    const std::string& input = inputs[index];
+    const std::size_t first = sets.size();
     try {
-      for (auto& table : dfvn::read_point_sets(input, input_format)) {
+      for (auto& table : dfvn::read_point_sets(input, input_format, dimension)) {
+        if (dimension != 0 && table.dimension != dimension)
+          throw dfvn::InputError(fmt::format("{}D points, not the {}D of --dim", table.dimension, dimension));
         sets.push_back(dfvn::PointSet{table.dimension, std::move(table.coordinates), dfvn::Box{0.0, domain_side}});
+        owner.push_back(index);
         dfvn::check_point_set(sets.back());
       }
     } catch (const std::exception& e) {
-      fail(input + (sets.empty() ? ", " : fmt::format(", set {}: ", sets.size() - 1)) + e.what());
+      fail(input_name(input) + (sets.size() == first ? ", " : fmt::format(", set {}: ", sets.size() - 1 - first)) + e.what());
     }
+  }
+
+  static std::string input_name(const std::string& input) { return input == kStandardInput ? "standard input" : input; }
+
+  void run() {
+    if (std::count(inputs.begin(), inputs.end(), std::string(kStandardInput)) > 1)
+      fail("standard input ('-') can be read once; it is named twice among the inputs");
+    if (format.empty() && std::find(inputs.begin(), inputs.end(), kStandardInput) != inputs.end())
+      fail("standard input ('-') has no extension to tell its format: give --format csv|npy|dat|bin");
+    if (!json_path.empty() && inputs.size() > 1)
+      fail(fmt::format("--json describes one input; {} are given", inputs.size()));
+    std::vector<dfvn::InputFormat> input_formats;
+    for (const std::string& input : inputs) {
+      try {
+        input_formats.push_back(format.empty() ? dfvn::input_format_from_path(input) : dfvn::parse_input_format(format));
+      } catch (const std::exception& e) {
+        fail(e.what());
+      }
+    }
+    std::vector<dfvn::PointSet> sets;
+    std::vector<std::size_t> owner;  // the input of each set
+    for (std::size_t i = 0; i < inputs.size(); ++i) read_input(i, input_formats[i], sets, owner);
+    for (std::size_t s = 1; s < sets.size(); ++s)
+      if (!spectrum_prefix.empty() && sets[s].dimension != sets.front().dimension)
+        fail(fmt::format("--spectrum averages sets of one dimension; '{}' holds {}D points, '{}' {}D", inputs[owner.front()],
+                         sets.front().dimension, inputs[owner[s]], sets[s].dimension));
     if (!spectrum_prefix.empty() && sets.front().dimension != 2 && sets.front().dimension != 3)
-      fail(fmt::format("--spectrum needs 2D or 3D points; '{}' holds {}D points", input, sets.front().dimension));
-    // Every output, checked together before the work: --output, --json and the spectrum's three files.
+      fail(fmt::format("--spectrum needs 2D or 3D points; '{}' holds {}D points", inputs.front(), sets.front().dimension));
+    if (!rdf_path.empty()) check_rdf(sets, owner);
+    // Every output, checked together before the work: --output, --json, --rdf and the spectrum's three files.
     std::vector<std::pair<std::string, std::string>> outputs = {
         {output_option->count() > 0 ? "--output" : "the statistics (default --output -)", output}};
     if (!json_path.empty()) outputs.emplace_back("--json", json_path);
+    if (!rdf_path.empty()) outputs.emplace_back("--rdf", rdf_path);
     if (!spectrum_prefix.empty())
       for (const std::string& suffix : dfvn::spectrum_file_suffixes())
         outputs.emplace_back("--spectrum (" + std::filesystem::path(spectrum_prefix + suffix).filename().string() + ")",
@@ -104,23 +168,43 @@ struct StatsCommand : Subcommand {
     options.knn = dfvn::parse_knn_backend(knn);
     options.threads = common.threads;
     options.periodic = periodic;
+    const int stages_per_set = dfvn::point_statistics_stage_count(options) + (rdf_path.empty() ? 0 : 1);
     dfvn::ProgressReporter* reporter =
-        progress.make(static_cast<int>(sets.size()) * dfvn::point_statistics_stage_count(options) + (spectrum_prefix.empty() ? 0 : 1));
+        progress.make(static_cast<int>(sets.size()) * stages_per_set + (spectrum_prefix.empty() ? 0 : 1));
     std::string csv = dfvn::point_statistics_csv_header();
+    std::string rdf_csv = "input,set,dim,r,g\n";
     std::vector<std::string> rows;
-    dfvn::PointStatisticsRun run{input, std::string(dfvn::to_string(input_format)), domain_side, options, {}, {}, !no_timing};
-    for (std::size_t s = 0; s < sets.size(); ++s) {
+    dfvn::PointStatisticsRun run{inputs.front(), std::string(dfvn::to_string(input_formats.front())), domain_side, options, {}, {},
+                                 !no_timing};
+    rdf.periodic = periodic;
+    for (std::size_t s = 0, in_input = 0; s < sets.size(); ++s, ++in_input) {
+      if (s > 0 && owner[s] != owner[s - 1]) in_input = 0;  // sets are numbered within their input
+      const std::string& input = inputs[owner[s]];
       // Each set's stages get its number, so that the [k/n] counter moves on between sets.
-      const std::string set_label = sets.size() > 1 ? fmt::format("set {} ", s) : std::string();
+      const std::string set_label =
+          sets.size() > 1 ? (inputs.size() > 1 ? fmt::format("{} set {} ", input, in_input) : fmt::format("set {} ", in_input))
+                          : std::string();
       run.sets.push_back(dfvn::measure_point_set(sets[s], options, [&](std::string_view stage, double f) {
         reporter->report(set_label + std::string(stage), f);
       }));
       run.dimensions.push_back(sets[s].dimension);
-      rows.push_back(dfvn::point_statistics_csv_row(input, std::to_string(s), sets[s], run.sets.back(), !no_timing));
+      rows.push_back(dfvn::point_statistics_csv_row(input, std::to_string(in_input), sets[s], run.sets.back(), !no_timing));
       csv += rows.back();
       rows.back().pop_back();
+      if (!rdf_path.empty()) {
+        const auto curve = dfvn::radial_distribution(sets[s], rdf, kRdfSeed, common.threads,
+                                                     [&](double f) { reporter->report(set_label + "rdf", f); });
+        for (std::size_t k = 0; k < curve.r.size(); ++k)
+          rdf_csv += fmt::format("{},{},{},{},{}\n", dfvn::csv_quoted(input), in_input, sets[s].dimension,
+                                 dfvn::format_real(curve.r[k]), dfvn::format_real(curve.g[k]));
+      }
     }
-    if (sets.size() > 1) csv += dfvn::realization_summary_rows(csv.substr(0, csv.find('\n')), rows, {"input", "dim"}, "set");
+    // Mean and sd rows for each input of several sets.
+    std::vector<std::string> summarised;
+    for (std::size_t s = 0; s < sets.size(); ++s)
+      if (std::count(owner.begin(), owner.end(), owner[s]) > 1) summarised.push_back(rows[s]);
+    if (!summarised.empty())
+      csv += dfvn::realization_summary_rows(csv.substr(0, csv.find('\n')), summarised, {"input", "dim"}, "set");
     if (!spectrum_prefix.empty()) {
       reporter->report("spectrum", 0.0);
       const auto spectrum = dfvn::power_spectrum(sets, spectrum_frequency, common.threads);
@@ -130,7 +214,31 @@ struct StatsCommand : Subcommand {
     }
     reporter->complete();
     if (!json_path.empty()) dfvn::write_file_atomically(json_path, dfvn::point_statistics_json(run));
+    if (!rdf_path.empty()) dfvn::write_file_atomically(rdf_path, rdf_csv);
     dfvn::write_file_atomically(output, csv);
+  }
+
+  // The seed of the RDF's query subset (--rdf-queries), the same for every set.
+  static constexpr std::uint64_t kRdfSeed = 1;
+
+  // --rdf's limits, checked for every set before the work: 2D..8D, r_max below half the side on the
+  // torus, bins wide enough for a finite g(r).
+  void check_rdf(const std::vector<dfvn::PointSet>& sets, const std::vector<std::size_t>& owner) const {
+    for (std::size_t s = 0; s < sets.size(); ++s) {
+      const int n = sets[s].dimension;
+      if (n < 2) fail(fmt::format("--rdf needs 2D..8D points; '{}' holds {}D points", inputs[owner[s]], n));
+      if (periodic && rdf.r_max >= 0.5 * domain_side)
+        fail(fmt::format("--rdf-max {:g} with --periodic must be below half the side ({:g})", rdf.r_max, 0.5 * domain_side));
+      if (rdf.r_max > 0.0) {
+        try {
+          dfvn::check_rdf_resolution(n, domain_side, std::min(rdf.r_max, 0.999 * domain_side), rdf.bins);
+        } catch (const std::invalid_argument&) {
+          fail(fmt::format("--rdf-max {:g} with --rdf-bins {} gives bins {:.3g} wide, too narrow for a finite g(r) in {}D; raise "
+                           "--rdf-max or lower --rdf-bins",
+                           rdf.r_max, rdf.bins, rdf.r_max / rdf.bins, n));
+        }
+      }
+    }
   }
 };
 

@@ -55,6 +55,7 @@ set(DFVN_PUBLIC_HEADERS
     io/png.hpp
     io/point_file.hpp
     io/point_reader.hpp
+    io/utk_bin.hpp
     noise/gradient_noise.hpp
     noise/noise_domain.hpp
     noise/noise_functions.hpp

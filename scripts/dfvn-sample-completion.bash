@@ -31,9 +31,10 @@ _dfvn_sample() {
   # The value of an option that takes one: its {choices}, a directory, a file, or nothing to offer.
   if [[ $prev == -* ]]; then
     local line long
-    line=$(grep -E -- "^ +(-[a-zA-Z],)?$prev( |=|$)|^ +$prev,--" <<<"$help" | head -n 1)
+    # An option may have several long names (-m,--sets,--realizations): $prev is any of them.
+    line=$(grep -E -- "^ +(-[a-zA-Z],)?(--[a-z][a-z0-9-]*,)*$prev( |=|,|$)" <<<"$help" | head -n 1)
     long=$(grep -oE -- '--[a-z][a-z0-9-]*' <<<"$line" | head -n 1)
-    local takes_value="^ +(-[a-zA-Z],)?$long (TEXT|INT|UINT|FLOAT)"
+    local takes_value="^ +(-[a-zA-Z],)?$long(,--[a-z][a-z0-9-]*)* (TEXT|INT|UINT|FLOAT)"
     if [[ -n $long && $line =~ $takes_value ]]; then
       if [[ $line =~ \{([^}]*)\} ]]; then
         COMPREPLY=($(compgen -W "${BASH_REMATCH[1]//,/ }" -- "$cur"))
@@ -42,7 +43,7 @@ _dfvn_sample() {
         compopt -o nospace
       elif [[ $long == @(--out|--points) ]]; then
         _filedir -d
-      elif [[ $line =~ $long\ TEXT ]]; then
+      elif [[ $line =~ $long(,--[a-z][a-z0-9-]*)*\ TEXT ]]; then
         _filedir
       fi
       return
@@ -52,6 +53,6 @@ _dfvn_sample() {
   if [[ $cur != -* && $at_subcommand == 1 && -n ${subcommands// /} ]]; then
     COMPREPLY=($(compgen -W "$subcommands" -- "$cur"))
   else
-    COMPREPLY=($(compgen -W "$(grep -oE -- '^ +(-[a-zA-Z],)?--[a-z][a-z0-9-]*' <<<"$help" | sed 's/^ *//; s/,/ /')" -- "$cur"))
+    COMPREPLY=($(compgen -W "$(grep -oE -- '^ +(-[a-zA-Z],)?--[a-z][a-z0-9-]*(,--[a-z][a-z0-9-]*)*' <<<"$help" | sed 's/^ *//; s/,/ /g')" -- "$cur"))
   fi
 } && complete -F _dfvn_sample dfvn-sample

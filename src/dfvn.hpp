@@ -35,6 +35,7 @@
 #include "dfvn/io/png.hpp"
 #include "dfvn/io/point_file.hpp"
 #include "dfvn/io/point_reader.hpp"
+#include "dfvn/io/utk_bin.hpp"
 
 #include "dfvn/noise/gradient_noise.hpp"
 #include "dfvn/noise/noise_domain.hpp"

@@ -12,13 +12,16 @@
 
 #include "dfvn/io/atomic_file.hpp"
 #include "dfvn/io/csv.hpp"
+#include "dfvn/io/utk_bin.hpp"
 
 namespace dfvn {
 
-void write_npy(std::ostream& out, const PointSet& points) {
+namespace {
+
+// The .npy header of float64 data of this shape ("3, 2" or "8, 1024, 2").
+void write_npy_header(std::ostream& out, const std::string& shape) {
   static_assert(std::endian::native == std::endian::little, "'<f8' output assumes a little-endian machine");
-  std::string header = fmt::format("{{'descr': '<f8', 'fortran_order': False, 'shape': ({}, {}), }}", points.size(),
-                                   points.dimension);
+  std::string header = fmt::format("{{'descr': '<f8', 'fortran_order': False, 'shape': ({}), }}", shape);
   // Magic (6) + version (2) + header length (2) + header, padded with spaces and ended by '\n' to a
   // multiple of 64 bytes (the format's alignment rule).
   const std::size_t unpadded = 10 + header.size() + 1;
@@ -29,8 +32,18 @@ void write_npy(std::ostream& out, const PointSet& points) {
   const char length_bytes[2] = {static_cast<char>(length & 0xFF), static_cast<char>(length >> 8)};
   out.write(length_bytes, 2);
   out.write(header.data(), static_cast<std::streamsize>(header.size()));
+}
+
+void write_coordinates(std::ostream& out, const PointSet& points) {
   out.write(reinterpret_cast<const char*>(points.coordinates.data()),
             static_cast<std::streamsize>(points.coordinates.size() * sizeof(double)));
+}
+
+}  // namespace
+
+void write_npy(std::ostream& out, const PointSet& points) {
+  write_npy_header(out, fmt::format("{}, {}", points.size(), points.dimension));
+  write_coordinates(out, points);
 }
 
 namespace {
@@ -65,7 +78,8 @@ PointFormat parse_point_format(std::string_view name) {
   if (name == "csv") return PointFormat::csv;
   if (name == "npy") return PointFormat::npy;
   if (name == "dat") return PointFormat::dat;
-  throw std::invalid_argument("unknown point format " + quote_for_message(name) + " (allowed: csv, npy, dat)");
+  if (name == "bin") return PointFormat::bin;
+  throw std::invalid_argument("unknown point format " + quote_for_message(name) + " (allowed: csv, npy, dat, bin)");
 }
 
 void write_point_file(const std::string& path, const PointSet& points, PointFormat format) {
@@ -74,7 +88,62 @@ void write_point_file(const std::string& path, const PointSet& points, PointForm
     case PointFormat::csv: write_points_csv(out.stream(), points); break;
     case PointFormat::npy: write_npy(out.stream(), points); break;
     case PointFormat::dat: write_points_dat(out.stream(), points); break;
+    case PointFormat::bin: write_utk_bin(out.stream(), points); break;
   }
+  out.commit();
+}
+
+void check_point_sets_fit(const std::vector<PointSet>& sets, PointFormat format) {
+  if (sets.empty()) throw std::invalid_argument("no point set to write");
+  for (const PointSet& set : sets)
+    if (set.dimension != sets.front().dimension)
+      throw std::invalid_argument(fmt::format("the sets are {}D and {}D: one file holds sets of one dimension",
+                                              sets.front().dimension, set.dimension));
+  if (sets.size() == 1) return;
+  if (format == PointFormat::csv)
+    throw std::invalid_argument(fmt::format("csv holds one point set, not {}: use dat ('#' between sets), npy or bin",
+                                            sets.size()));
+  if (format == PointFormat::npy)
+    for (std::size_t s = 1; s < sets.size(); ++s)
+      if (sets[s].size() != sets.front().size())
+        throw std::invalid_argument(fmt::format("npy holds sets of one size as an array (sets, points, N); set 0 has {} "
+                                                "points, set {} has {}: use dat or bin",
+                                                sets.front().size(), s, sets[s].size()));
+}
+
+void write_point_sets(std::ostream& out, const std::vector<PointSet>& sets, PointFormat format) {
+  check_point_sets_fit(sets, format);
+  if (sets.size() == 1 && format != PointFormat::bin) {
+    switch (format) {
+      case PointFormat::csv: write_points_csv(out, sets.front()); break;
+      case PointFormat::npy: write_npy(out, sets.front()); break;
+      default: write_points_dat(out, sets.front()); break;
+    }
+    return;
+  }
+  switch (format) {
+    case PointFormat::npy:
+      write_npy_header(out, fmt::format("{}, {}, {}", sets.size(), sets.front().size(), sets.front().dimension));
+      for (const PointSet& set : sets) write_coordinates(out, set);
+      break;
+    case PointFormat::dat:
+      // UTK's write_text_pointsets: "#" between sets, none after the last.
+      for (std::size_t s = 0; s < sets.size(); ++s) {
+        if (s) out << "#\n";
+        write_points_dat(out, sets[s]);
+      }
+      break;
+    case PointFormat::bin:
+      for (const PointSet& set : sets) write_utk_bin(out, set);
+      break;
+    case PointFormat::csv: break;  // refused by check_point_sets_fit
+  }
+}
+
+void write_point_sets_file(const std::string& path, const std::vector<PointSet>& sets, PointFormat format) {
+  check_point_sets_fit(sets, format);
+  AtomicOutput out(path);
+  write_point_sets(out.stream(), sets, format);
   out.commit();
 }
 

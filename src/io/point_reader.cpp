@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "dfvn/core/message_text.hpp"
+#include "dfvn/io/utk_bin.hpp"
 
 namespace dfvn {
 
@@ -21,7 +23,8 @@ InputFormat parse_input_format(std::string_view name) {
   if (name == "csv") return InputFormat::csv;
   if (name == "npy") return InputFormat::npy;
   if (name == "dat") return InputFormat::dat;
-  throw std::invalid_argument("unknown input format '" + std::string(name) + "' (allowed: csv, npy, dat)");
+  if (name == "bin") return InputFormat::bin;
+  throw std::invalid_argument("unknown input format '" + std::string(name) + "' (allowed: csv, npy, dat, bin)");
 }
 
 std::string_view to_string(InputFormat format) {
@@ -29,6 +32,7 @@ std::string_view to_string(InputFormat format) {
     case InputFormat::csv: return "csv";
     case InputFormat::npy: return "npy";
     case InputFormat::dat: return "dat";
+    case InputFormat::bin: return "bin";
   }
   return "?";
 }
@@ -38,7 +42,9 @@ InputFormat input_format_from_path(const std::string& path) {
   if (extension == ".csv") return InputFormat::csv;
   if (extension == ".npy") return InputFormat::npy;
   if (extension == ".dat" || extension == ".txt") return InputFormat::dat;
-  throw std::invalid_argument("cannot tell the format of '" + path + "' from its extension; give --format csv|npy|dat");
+  if (extension == ".bin") return InputFormat::bin;
+  if (path == "-") throw std::invalid_argument("standard input ('-') has no extension to tell its format; give --format csv|npy|dat|bin");
+  throw std::invalid_argument("cannot tell the format of '" + path + "' from its extension; give --format csv|npy|dat|bin");
 }
 
 namespace {
@@ -272,13 +278,19 @@ std::vector<PointTable> parse_npy(std::string_view bytes) {
     throw InputError(fmt::format("npy: dtype {} is not supported (allowed float64 '<f8' and float32 '<f4')",
                                  quote_for_message(descr)));
   const std::string shape = shape_text(header.shape);
-  if (header.shape.empty() || header.shape.size() > 2)
-    throw InputError(fmt::format("npy: shape {} is not (points, dimension) or (points,)", shape));
-  const std::uint64_t rows = header.shape[0];
+  if (header.shape.empty() || header.shape.size() > 3)
+    throw InputError(fmt::format("npy: shape {} is not (points, dimension), (points,) or (sets, points, dimension)", shape));
+  // (sets, points, N): `sets` sets of `points` rows each, the rows of all sets in one table here.
+  const bool several = header.shape.size() == 3;
+  const std::uint64_t set_count = several ? header.shape[0] : 1;
+  const std::uint64_t set_rows = several ? header.shape[1] : header.shape[0];
   const int dimension =
-      header.shape.size() == 2 ? static_cast<int>(std::min<std::uint64_t>(header.shape[1], 1u << 20)) : 1;
+      header.shape.size() >= 2 ? static_cast<int>(std::min<std::uint64_t>(header.shape.back(), 1u << 20)) : 1;
   check_dimension(dimension, "npy: shape " + shape);
-  if (rows == 0) throw InputError(fmt::format("npy: shape {} holds no points", shape));
+  if (set_count == 0 || set_rows == 0) throw InputError(fmt::format("npy: shape {} holds no points", shape));
+  std::uint64_t rows = 0;
+  if (__builtin_mul_overflow(set_count, set_rows, &rows))
+    throw InputError(fmt::format("npy: shape {} holds more than 2^64 points", shape));
   const std::size_t data_start = header_start + header_length;
   const std::uint64_t available = bytes.size() - data_start;
   // rows x N x item size in checked arithmetic: a header may declare (2^62, 8), whose product wraps.
@@ -293,10 +305,15 @@ std::vector<PointTable> parse_npy(std::string_view bytes) {
   }
   PointTable table{dimension, Coordinates(rows * static_cast<std::uint64_t>(dimension))};
   const char* data = bytes.data() + data_start;
+  // Row i of the whole array is point i % set_rows of set i / set_rows. C order: element (i, k) at
+  // i * N + k in both shapes; Fortran order: (s, p, k) at k * sets * points + p * sets + s.
   for (std::uint64_t i = 0; i < rows; ++i) {
     for (int k = 0; k < dimension; ++k) {
       // C order: element (i, k) at i * N + k; Fortran order: at k * rows + i.
-      const std::uint64_t element = header.fortran_order ? k * rows + i : i * dimension + k;
+      const std::uint64_t element =
+          !header.fortran_order ? i * dimension + k
+          : several ? k * rows + (i % set_rows) * set_count + i / set_rows
+                    : k * rows + i;
       double value;
       if (item_size == 8) {
         std::memcpy(&value, data + element * 8, 8);
@@ -310,26 +327,51 @@ std::vector<PointTable> parse_npy(std::string_view bytes) {
       table.coordinates[i * dimension + k] = value;
     }
   }
-  return {std::move(table)};
+  if (!several) return {std::move(table)};
+  std::vector<PointTable> sets;
+  const std::uint64_t set_values = set_rows * static_cast<std::uint64_t>(dimension);
+  for (std::uint64_t s = 0; s < set_count; ++s) {
+    PointTable set{dimension, Coordinates(set_values)};
+    std::memcpy(set.coordinates.data(), table.coordinates.data() + s * set_values, set_values * sizeof(double));
+    sets.push_back(std::move(set));
+  }
+  return sets;
 }
 
 }  // namespace
 
-std::vector<PointTable> parse_point_sets(std::string_view bytes, InputFormat format) {
+std::vector<PointTable> parse_point_sets(std::string_view bytes, InputFormat format, int bin_dimension) {
   switch (format) {
     case InputFormat::csv: return parse_csv(bytes);
     case InputFormat::npy: return parse_npy(bytes);
     case InputFormat::dat: return parse_dat(bytes);
+    case InputFormat::bin: return parse_utk_bin(bytes, bin_dimension);
   }
   throw std::logic_error("unknown input format");
 }
 
-std::vector<PointTable> read_point_sets(const std::string& path, InputFormat format) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot read the file");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError("read error");
-  return parse_point_sets(bytes, format);
+std::string read_whole_file(const std::string& path) {
+  // One read loop for files and pipes alike, in 1 MiB blocks: standard input costs what a file costs.
+  std::FILE* file = path == "-" ? stdin : std::fopen(path.c_str(), "rb");
+  if (!file) throw InputError("cannot read the file");
+  std::string bytes;
+  constexpr std::size_t kBlock = std::size_t{1} << 20;
+  std::size_t used = 0;
+  while (true) {
+    bytes.resize(used + kBlock);
+    const std::size_t got = std::fread(bytes.data() + used, 1, kBlock, file);
+    used += got;
+    if (got < kBlock) break;
+  }
+  const bool failed = std::ferror(file) != 0;
+  if (file != stdin) std::fclose(file);
+  if (failed) throw InputError(path == "-" ? "read error on standard input" : "read error");
+  bytes.resize(used);
+  return bytes;
+}
+
+std::vector<PointTable> read_point_sets(const std::string& path, InputFormat format, int bin_dimension) {
+  return parse_point_sets(read_whole_file(path), format, bin_dimension);
 }
 
 }  // namespace dfvn

@@ -48,8 +48,10 @@ printf '\x01\x00\x00\x00\x00\x00\x00\x00\x02\x00\x00\x00\x00\x00\x00\x00' >>"$wo
 expect_error "int npy" "" "dtype '<i8' is not supported" stats --input "$work/int.npy"
 expect_error "outside the domain" "" "outside the domain \[0, 0.5\]\^2; give the side with --domain-side" stats --input "$work/two.dat" --domain-side 0.5
 expect_error "unknown format" "" "--format: xyz not in" stats --input "$work/two.dat" --format xyz
+cp "$work/two.dat" "$work/two.pts"
+expect_error "no format" "" "give --format" stats --input "$work/two.pts"
 cp "$work/two.dat" "$work/two.bin"
-expect_error "no format" "" "give --format" stats --input "$work/two.bin"
+expect_error "text named .bin" "" "two.bin, bin: .* not UTK .bin records" stats --input "$work/two.bin"
 expect_error "missing file" "" "" stats --input "$work/none.csv"
 expect_error "no input" "" "input" stats
 
@@ -58,7 +60,9 @@ expect_error "no input" "" "input" stats
 seed_column=$(head -1 "$work/r.csv" | tr ',' '\n' | grep -nx seed | cut -d: -f1)
 [[ $(cut -d, -f3,"$seed_column" "$work/r.csv" | tail -n +2 | tr '\n' ' ') == "jitter,5 sobol,5 jitter,6 sobol,6 jitter,7 sobol,7 jitter,mean jitter,sd sobol,mean sobol,sd " ]] \
   && ok || bad "realization rows: $(cut -d, -f3,"$seed_column" "$work/r.csv" | tr '\n' ' ')"
-expect_error "realizations and points" "" "one realization" --dim 3 --grid 4 --realizations 2 --points "$work/rp"
+expect_error "sets in csv" "" "--points writes the 2 sets of --sets into one file: --format dat, npy or bin" \
+  --dim 3 --grid 4 --realizations 2 --points "$work/rp"
+expect_error "realizations and rdf" "" "--rdf takes one realization" --dim 3 --grid 4 -m 2 --rdf "$work/rp.csv"
 
 # stats --spectrum: 2D sets (the file's sets are averaged); not for 4D.
 "$bin" --dim 2 --grid 16 --methods jitter --protocol unit --points "$work/s2" --quiet >/dev/null || bad "sample 2D"

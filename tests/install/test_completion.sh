@@ -38,6 +38,14 @@ line_shown="dfvn-sample field --d"; expect "field --d" --dim --diagnose --diagno
 line_shown="dfvn-sample --noise "; expect "--noise " turning-bands simplex quintic-gradient
 line_shown="dfvn-sample sample --protocol u"; expect "sample --protocol u" unit
 line_shown="dfvn-sample --methods cnj,s"; expect "--methods cnj,s" cnj,sobol
+line_shown="dfvn-sample sample --s"; expect "sample --s" --sets --seed
+line_shown="dfvn-sample sample --re"; expect "sample --re" --realizations
+line_shown="dfvn-sample sample -"; expect "sample -" -m --sets
+line_shown="dfvn-sample sample --format "; expect "sample --format " csv npy dat bin
+line_shown="dfvn-sample stats --format b"; expect "stats --format b" bin
+line_shown="dfvn-sample stats --r"; expect "stats --r" --rdf --rdf-bins
+got=$(complete_line "sample --sets ")
+[[ -z ${got// /} ]] || fail "a number option (--sets) offered '$got'"
 got=$(complete_line "field --dim ")
 [[ -z ${got// /} ]] || fail "a number option (--dim) offered '$got'"
 echo "ok: subcommands, options and their values complete"

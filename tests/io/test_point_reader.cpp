@@ -84,8 +84,9 @@ TEST(PointReader, NpyErrorsNameDtypeAndShape) {
   EXPECT_EQ(error_of(npy_bytes("<i8", "(2, 2)", integers, sizeof integers), InputFormat::npy),
             "npy: dtype '<i8' is not supported (allowed float64 '<f8' and float32 '<f4')");
   const double values[8] = {};
-  EXPECT_EQ(error_of(npy_bytes("<f8", "(2, 2, 2)", values, sizeof values), InputFormat::npy),
-            "npy: shape (2, 2, 2) is not (points, dimension) or (points,)");
+  EXPECT_EQ(error_of(npy_bytes("<f8", "(1, 2, 2, 2)", values, sizeof values), InputFormat::npy),
+            "npy: shape (1, 2, 2, ... 4 extents) is not (points, dimension), (points,) or (sets, points, dimension)");
+  EXPECT_EQ(error_of(npy_bytes("<f8", "(0, 2, 2)", values, 0), InputFormat::npy), "npy: shape (0, 2, 2) holds no points");
   EXPECT_EQ(error_of(npy_bytes("<f8", "(1, 9)", values, sizeof values), InputFormat::npy),
             "npy: shape (1, 9): 9 coordinates per point; allowed 1..8");
   EXPECT_EQ(error_of(npy_bytes("<f8", "(3, 2)", values, 5 * 8), InputFormat::npy),
@@ -149,7 +150,7 @@ TEST(PointReader, NpyHeaderIsReadStrictly) {
   EXPECT_EQ(error_of(npy_bytes("<f8", "(18446744073709551616, 2)", values, sizeof values), InputFormat::npy),
             "npy: shape extent '18446744073709551616' is above 2^64 - 1");
   EXPECT_EQ(error_of(npy_bytes("<f8", "()", values, sizeof values), InputFormat::npy),
-            "npy: shape () is not (points, dimension) or (points,)");
+            "npy: shape () is not (points, dimension), (points,) or (sets, points, dimension)");
   EXPECT_EQ(parse_point_sets(npy_bytes("<f8", "( 2 , 2 , )", values, sizeof values), InputFormat::npy)[0].rows(), 2u);
   // Keys: the three numpy writes, no other, none missing.
   std::string no_shape("\x93NUMPY\x01\x00", 8);
@@ -169,10 +170,38 @@ TEST(PointReader, NpyHeaderIsReadStrictly) {
   EXPECT_LT(message.size(), 200u) << "the dtype is quoted shortened";
 }
 
+TEST(PointReader, NpyOfSeveralSetsInBothOrders) {
+  // (2 sets, 3 points, 2 coordinates): set s, point p, coordinate k = s + p / 10 + k / 100.
+  double c_order[12], fortran[12];
+  for (int set = 0; set < 2; ++set)
+    for (int p = 0; p < 3; ++p)
+      for (int k = 0; k < 2; ++k) {
+        const double v = set + p / 10.0 + k / 100.0;
+        c_order[(set * 3 + p) * 2 + k] = v;
+        fortran[k * 6 + p * 2 + set] = v;
+      }
+  for (const bool is_fortran : {false, true}) {
+    const auto sets = parse_point_sets(npy_bytes("<f8", "(2, 3, 2)", is_fortran ? fortran : c_order, sizeof c_order, is_fortran),
+                                       InputFormat::npy);
+    ASSERT_EQ(sets.size(), 2u);
+    for (int set = 0; set < 2; ++set) {
+      ASSERT_EQ(sets[set].rows(), 3u);
+      EXPECT_EQ(sets[set].dimension, 2);
+      for (int p = 0; p < 3; ++p)
+        for (int k = 0; k < 2; ++k) EXPECT_EQ(sets[set].row(p)[k], set + p / 10.0 + k / 100.0) << is_fortran;
+    }
+  }
+  EXPECT_EQ(error_of(npy_bytes("<f8", "(2, 3, 2)", c_order, 11 * 8), InputFormat::npy),
+            "npy: shape (2, 3, 2) of dtype '<f8' needs 96 data bytes, the file has 88");
+}
+
 TEST(PointReader, FormatFromExtension) {
   EXPECT_EQ(input_format_from_path("a/b.npy"), InputFormat::npy);
   EXPECT_EQ(input_format_from_path("b.txt"), InputFormat::dat);
-  EXPECT_THROW(input_format_from_path("b.bin"), std::invalid_argument);
+  EXPECT_EQ(input_format_from_path("b.bin"), InputFormat::bin);
+  EXPECT_THROW(input_format_from_path("b.xyz"), std::invalid_argument);
+  EXPECT_THROW(input_format_from_path("-"), std::invalid_argument);
+  EXPECT_EQ(parse_input_format("bin"), InputFormat::bin);
 }
 
 }  // namespace
