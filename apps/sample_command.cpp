@@ -178,7 +178,7 @@ struct SampleCommand : Subcommand {
         ->capture_default_str()
         ->check(kNonNegativeFinite);
     cmd->add_option("--realizations", realizations,
-                    "Run seeds s..s+R-1 and add per method the mean and sd of every statistic (rows seed = mean, sd)")
+                    "Run seeds s..s+R-1 and add per method the mean and sd of every real statistic (rows stat = mean, sd)")
         ->capture_default_str()
         ->check(CLI::Range(1, 100000));
     progress.add_to(*cmd);

@@ -44,7 +44,7 @@ struct StatsCommand : Subcommand {
         "stats",
         "Statistics of any point set in [0,S]^N, N = 1..8: nearest-neighbour summary and, with --discrepancy, the\n"
         "CD, WD, MD and L2-star discrepancies (as scipy.stats.qmc.discrepancy). One CSV row per set; a dat file\n"
-        "with several sets also gets their mean and sd rows (set = mean, sd).");
+        "with several sets also gets their mean and sd rows (column stat = mean, sd; value in the sets' rows).");
     cmd->add_option("--input", input, "Point file: CSV (optional header), NPY float64/float32 (points, N), or dat\n"
                                       "(whitespace-separated, '#' lines between sets)")
         ->required()
