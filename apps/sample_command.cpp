@@ -183,7 +183,7 @@ struct SampleCommand : Subcommand {
         ->check(kNonNegativeFinite);
     cmd->add_option("-m,--sets,--realizations", realizations,
                     "M independently seeded sets (realizations; -m/--sets as in UTK): seeds s..s+M-1; the statistics\n"
-                    "add per method the mean and sd of every statistic (rows seed = mean, sd); --points writes the M\n"
+                    "add per method the mean and sd of every real statistic (rows stat = mean, sd); --points writes the M\n"
                     "sets of a method into one file")
         ->capture_default_str()
         ->check(CLI::Range(1, 100000));

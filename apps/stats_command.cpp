@@ -54,7 +54,8 @@ struct StatsCommand : Subcommand {
         "stats",
         "Statistics of any point set in [0,S]^N, N = 1..8: nearest-neighbour summary and, with --discrepancy, the\n"
         "CD, WD, MD and L2-star discrepancies (as scipy.stats.qmc.discrepancy). One CSV row per set of every\n"
-        "input (columns input, set); inputs with several sets also get their mean and sd rows (set = mean, sd).");
+        "input (columns input, set); inputs with several sets also get their mean and sd rows (column\n"
+        "stat = mean, sd, with set empty; value in the sets' rows).");
     // A file or '-' (standard input).
     const CLI::Validator file_or_standard_input(
         [](std::string& path) { return path == kStandardInput ? std::string() : CLI::ExistingFile(path); }, "FILE|-");

@@ -427,7 +427,7 @@ std::string stats_csv_header() {
   return "dim,grid,method,points,nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,"
          "median_displacement,frac_unmoved,neighbour_disorder,lattice_order,seconds_generate,seconds_stats,seed,"
          "protocol,domain_side,requested,frequency,field_frequency,trace_time,dropped,skipped_updates,retraced,kept_at_site,"
-         "half_width,radius,saturated,notes\n";
+         "half_width,radius,saturated,notes,stat\n";
 }
 
 namespace {
@@ -452,14 +452,14 @@ std::string stats_csv_row(const SampleConfig& config, const MethodResult& r, boo
   const std::string seconds =
       timing ? fmt::format("{:.6f},{}", r.seconds_generate, r.measured ? fmt::format("{:.6f}", r.seconds_stats) : "") : ",";
   const GenerationFacts& f = r.facts;
-  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"\n", config.dimension,
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\",{}\n", config.dimension,
                      config.grid,
                      to_string(r.plan.method), r.point_count,
                      nearest, displacement, seconds, config.seed, to_string(config.protocol), format_real(r.plan.domain.side),
                      r.plan.requested, field_or_empty(f.frequency), field_or_empty(f.field_frequency),
                      field_or_empty(f.trace_time), field_or_empty(f.dropped), field_or_empty(f.skipped_updates),
                      field_or_empty(f.retraced), field_or_empty(f.kept_at_site), field_or_empty(f.half_width),
-                     field_or_empty(f.radius), field_or_empty(f.saturated), r.notes);
+                     field_or_empty(f.radius), field_or_empty(f.saturated), r.notes, "value");
 }
 
 std::string rdf_csv_header() { return "dim,method,r,g\n"; }
@@ -468,8 +468,8 @@ std::string rdf_csv_rows(const SampleConfig& config, const MethodResult& r) {
   std::string out;
   if (!r.rdf) return out;
   for (std::size_t k = 0; k < r.rdf->r.size(); ++k)
-    fmt::format_to(std::back_inserter(out), "{},{},{:.9g},{:.9g}\n", config.dimension, to_string(r.plan.method),
-                   r.rdf->r[k], r.rdf->g[k]);
+    fmt::format_to(std::back_inserter(out), "{},{},{},{}\n", config.dimension, to_string(r.plan.method),
+                   format_real(r.rdf->r[k]), format_real(r.rdf->g[k]));
   return out;
 }
 

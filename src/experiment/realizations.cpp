@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string_view>
 
-#include <fmt/format.h>
+#include "dfvn/io/csv.hpp"
 
 namespace dfvn {
 
@@ -39,8 +39,10 @@ std::vector<std::string> split_csv(const std::string& line) {
   return fields;
 }
 
-bool parse_number(const std::string& text, double& value) {
-  if (text.empty()) return false;
+// A real number as format_real writes it: a decimal point or an exponent ("1.0", "2e-07"); integers
+// ("512") and words are not reals, and nan or inf have no mean.
+bool parse_real(const std::string& text, double& value) {
+  if (text.empty() || text.find_first_of(".eE") == std::string::npos) return false;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   return error == std::errc() && end == text.data() + text.size() && std::isfinite(value);
 }
@@ -57,6 +59,7 @@ std::string realization_summary_rows(const std::string& header, const std::vecto
                                      const std::vector<std::string>& group_columns, const std::string& label_column) {
   const std::vector<std::string> columns = split_csv(header);
   const std::size_t label = column_index(columns, label_column);
+  const std::size_t stat = column_index(columns, "stat");
   std::vector<std::size_t> group;
   for (const auto& name : group_columns) group.push_back(column_index(columns, name));
 
@@ -84,20 +87,20 @@ std::string realization_summary_rows(const std::string& header, const std::vecto
         mean_row[c] = sd_row[c] = members.front()[c];
         continue;
       }
-      if (c == label) continue;
+      if (c == label || c == stat) continue;
       std::vector<double> values;
       for (const auto& fields : members) {
         double v = 0.0;
-        if (!parse_number(fields[c], v)) break;
+        if (!parse_real(fields[c], v)) break;
         values.push_back(v);
       }
       if (values.size() != members.size()) continue;
       const MeanSd s = mean_sd(values);
-      mean_row[c] = fmt::format("{:.9g}", s.mean);
-      sd_row[c] = fmt::format("{:.9g}", s.sd);
+      mean_row[c] = format_real(s.mean);
+      sd_row[c] = format_real(s.sd);
     }
-    mean_row[label] = "mean";
-    sd_row[label] = "sd";
+    mean_row[stat] = "mean";
+    sd_row[stat] = "sd";
     for (const auto* row : {&mean_row, &sd_row}) {
       for (std::size_t c = 0; c < columns.size(); ++c) out += (c ? "," : "") + (*row)[c];
       out += '\n';

@@ -12,12 +12,16 @@ struct MeanSd {
 };
 MeanSd mean_sd(const std::vector<double>& values);
 
-// Summary rows of a CSV table whose rows are realizations. `rows`: data lines without their newline,
-// all with the columns of `header` (comma-separated; a field may be a double-quoted text without
-// commas inside quotes). Rows are grouped by the values of `group_columns` (e.g. "method"), in order
-// of first appearance; for each group two rows are returned, "mean" and "sd" in `label_column`
-// (e.g. "seed"): every column that is a number in every row of the group gets its mean (sd), the
-// group columns keep their value, every other column is left empty.
+// The summary rows of a CSV table whose rows are realizations (issue 24, tidy outputs). The table has
+// a `stat` column whose value is a word: "value" in every data row, "mean" or "sd" in a summary row,
+// so no column changes type. `rows`: data lines without their newline, all with the columns of
+// `header` (comma-separated; a field may be a double-quoted text without commas inside quotes). Rows
+// are grouped by the values of `group_columns` (e.g. "method"), in order of first appearance; for each
+// group two rows are returned, stat = "mean" and "sd": the group columns keep their value,
+// `label_column` (e.g. "seed") is empty, and every column whose cell is a real number in every row of
+// the group (written with a decimal point or exponent, io/csv.hpp's format_real) gets its mean (sample
+// sd) as format_real writes it. Every other column, integer counts (points, dropped) and words alike,
+// is empty in the summary rows: its values are in the data rows.
 std::string realization_summary_rows(const std::string& header, const std::vector<std::string>& rows,
                                      const std::vector<std::string>& group_columns, const std::string& label_column);
 

@@ -12,6 +12,7 @@
 #include "dfvn/core/parallel.hpp"
 #include "dfvn/core/quantile.hpp"
 #include "dfvn/core/stopwatch.hpp"
+#include "dfvn/io/csv.hpp"
 
 namespace dfvn {
 
@@ -110,11 +111,14 @@ std::string diagnosis_csv_header() {
 
 std::string diagnosis_csv_row(const FieldDiagnosis& d) {
   const DiagnosisOptions& o = d.options;
-  return fmt::format("{},{},{:g},{},{},{:g},{:.6g},{:.6g},{:.6g},{:.6g},{:.3g},{:.3g},{:.3g},{},{:.6g},{:.6g},{:.4f},{:.3f},{}\n",
-                     o.dimension, to_string(o.field.noise), o.field.frequency, o.seed, o.points, o.periods, d.rms_speed,
-                     d.median_over_rms, d.q10_over_rms, d.fraction_below_1_percent, d.divergence_median,
-                     d.divergence_p95, d.divergence_max, d.still_points, d.wavenumber_measured,
-                     d.wavenumber_expected, d.wavenumber_measured / d.wavenumber_expected, d.seconds,
+  // Reals as format_real writes them ("1.0", never "1"); the options to 9 digits (as given).
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.4f},{:.3f},{}\n", o.dimension,
+                     to_string(o.field.noise), format_real(o.field.frequency), o.seed, o.points, format_real(o.periods),
+                     format_real(d.rms_speed, 6), format_real(d.median_over_rms, 6), format_real(d.q10_over_rms, 6),
+                     format_real(d.fraction_below_1_percent, 6), format_real(d.divergence_median, 3),
+                     format_real(d.divergence_p95, 3), format_real(d.divergence_max, 3), d.still_points,
+                     format_real(d.wavenumber_measured, 6), format_real(d.wavenumber_expected, 6),
+                     d.wavenumber_measured / d.wavenumber_expected, d.seconds,
                      o.field.periodic ? "torus" : std::string(o.field.constraint == FieldConstraint::none
                                                                   ? "free"
                                                                   : to_string(o.field.constraint)));

@@ -226,10 +226,15 @@ PointTable read_points_text(std::istream& in, int dimension) {
   }
 }
 
-void append_double(std::string& out, double value) { fmt::format_to(std::back_inserter(out), "{:.17g}", value); }
+void append_double(std::string& out, double value) {
+  const std::size_t start = out.size();
+  fmt::format_to(std::back_inserter(out), "{:.17g}", value);
+  if (std::isfinite(value) && out.find_first_of(".e", start) == std::string::npos) out += ".0";
+}
 
 std::string format_real(double value, int significant) {
-  std::string text = fmt::format("{:.{}g}", value, significant);
+  std::string text;
+  fmt::format_to(std::back_inserter(text), "{:.{}g}", value, significant);
   if (std::isfinite(value) && text.find_first_of(".e") == std::string::npos) text += ".0";
   return text;
 }

@@ -50,14 +50,16 @@ PointTable read_points_csv(std::istream& in, int dimension);
 // `dimension` 0: the column count of that line (1..16), named in errors as "as in the first line".
 PointTable read_points_text(std::istream& in, int dimension);
 
-// A double in the shortest form that still has 17 significant digits of precision ("%.17g"), so the
-// text reads back to the identical value.
-void append_double(std::string& out, double value);
-
-// A real number for a CSV column of reals: `significant` digits ("%.9g"), with ".0" appended when that
-// leaves neither a decimal point nor an exponent, so a column never changes type between runs ("1.0"
-// beside "0.6", not "1").
+// The one way every real number is written in the tool's CSV (and text point) files: `significant`
+// digits ("%.9g"), with ".0" appended when that leaves neither a decimal point nor an exponent, so a
+// column of reals never changes type between rows or runs ("1.0" beside "0.6", never "1"; "1e+20" and
+// "2.5e-07" keep their exponent). NaN and infinities are spelled "nan", "inf" and "-inf". Counts and
+// other integers are written as integers ("512"), never through this function.
 std::string format_real(double value, int significant = 9);
+
+// format_real(value, 17) appended to `out`: 17 significant digits ("%.17g", ".0" added as above), so the
+// text reads back to the identical double. Point coordinates and field values use it.
+void append_double(std::string& out, double value);
 
 // `text` as one CSV field (RFC 4180): in double quotes, each quote inside doubled, every other byte as
 // it is (commas, newlines and non-UTF-8 bytes are then part of the field), e.g. q"uo.csv -> "q""uo.csv".

@@ -15,6 +15,7 @@
 #include "dfvn/core/seeds.hpp"
 #include "dfvn/core/stopwatch.hpp"
 #include "dfvn/io/atomic_file.hpp"
+#include "dfvn/io/csv.hpp"
 #include "dfvn/noise/noise_domain.hpp"
 #include "dfvn/plot/gnuplot.hpp"
 #include "dfvn/reproduce/reproduce.hpp"
@@ -538,17 +539,23 @@ std::string write_cnj_study(const CnjStudyResult& result, const Log& log) {
       "lattice_order,skipped_update_fraction,cnj_nn_min,cnj_nn_q01,h_rms,jitter_rms_nn_min,jitter_rms_nn_q01,"
       "h_disorder,jitter_disorder_nn_min,jitter_disorder_nn_q01,h_order,jitter_order_nn_min,jitter_order_nn_q01,dropped_fraction,steps\n";
   for (const CnjStudyRow& r : result.rows)
-    rows += fmt::format("{},{},{},{:g},{:g},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},"
-                        "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{}\n",
-                        r.dimension, r.grid, to_string(r.basis), r.frequency, r.step_scale, r.seed, r.rms_displacement,
-                        r.median_over_rms, r.fraction_unmoved, r.neighbour_disorder, r.lattice_order,
-                        r.skipped_update_fraction, r.cnj.nn_min, r.cnj.nn_q01, r.h_rms, r.jitter_rms.nn_min,
-                        r.jitter_rms.nn_q01, r.h_disorder, r.jitter_disorder.nn_min, r.jitter_disorder.nn_q01, r.h_order,
-                        r.jitter_order.nn_min, r.jitter_order.nn_q01, r.dropped_fraction, r.steps);
+  {
+    // Reals as format_real writes them ("1.0", never "1"): the frequency and step scale to 9 digits (as
+    // given), the measurements to 6.
+    rows += fmt::format("{},{},{},{},{},{}", r.dimension, r.grid, to_string(r.basis), format_real(r.frequency),
+                        format_real(r.step_scale), r.seed);
+    for (double v : {r.rms_displacement, r.median_over_rms, r.fraction_unmoved, r.neighbour_disorder, r.lattice_order,
+                     r.skipped_update_fraction, r.cnj.nn_min, r.cnj.nn_q01, r.h_rms, r.jitter_rms.nn_min,
+                     r.jitter_rms.nn_q01, r.h_disorder, r.jitter_disorder.nn_min, r.jitter_disorder.nn_q01, r.h_order,
+                     r.jitter_order.nn_min, r.jitter_order.nn_q01, r.dropped_fraction})
+      rows += ',', rows += format_real(v, 6);
+    rows += fmt::format(",{}\n", r.steps);
+  }
   std::string curve = "dim,half_width,rms_displacement,neighbour_disorder,lattice_order,nn_min,nn_q01\n";
   for (const JitterCurvePoint& p : result.jitter_curve)
-    curve += fmt::format("{},{:g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n", p.dimension, p.half_width, p.rms_displacement,
-                         p.neighbour_disorder, p.lattice_order, p.packing.nn_min, p.packing.nn_q01);
+    curve += fmt::format("{},{},{},{},{},{},{}\n", p.dimension, format_real(p.half_width), format_real(p.rms_displacement, 6),
+                         format_real(p.neighbour_disorder, 6), format_real(p.lattice_order, 6),
+                         format_real(p.packing.nn_min, 6), format_real(p.packing.nn_q01, 6));
   const std::string md = cnj_study_markdown(result);
   write_file_atomically((dir / "cnj_study.csv").string(), rows);
   write_file_atomically((dir / "cnj_study_jitter.csv").string(), curve);

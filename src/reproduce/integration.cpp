@@ -14,6 +14,7 @@
 #include "dfvn/core/repeats.hpp"
 #include "dfvn/core/seeds.hpp"
 #include "dfvn/io/atomic_file.hpp"
+#include "dfvn/io/csv.hpp"
 #include "dfvn/plot/gnuplot.hpp"
 #include "dfvn/experiment/realizations.hpp"
 
@@ -352,8 +353,9 @@ std::string write_integration(const IntegrationResult& result, const Log& log) {
   const std::string dir = result.config.out_dir;
   std::string cells = "dim,family,method,grid,points,rms_relative_error,standard_error,realizations\n";
   for (const auto& c : result.cells)
-    cells += fmt::format("{},{},{},{},{:.6g},{:.9g},{:.9g},{}\n", c.dimension, to_string(c.family), to_string(c.method), c.grid,
-                         c.points, c.rms_relative_error, c.standard_error, result.config.realizations);
+    cells += fmt::format("{},{},{},{},{},{},{},{}\n", c.dimension, to_string(c.family), to_string(c.method), c.grid,
+                         format_real(c.points, 6), format_real(c.rms_relative_error), format_real(c.standard_error),
+                         result.config.realizations);
   std::string slopes = "dim,family,method,slope\n";
   for (const auto& s : result.slopes)
     slopes += fmt::format("{},{},{},{}\n", s.dimension, to_string(s.family), to_string(s.method),

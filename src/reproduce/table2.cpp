@@ -8,6 +8,7 @@
 #include "dfvn/core/parallel.hpp"
 #include "dfvn/core/stopwatch.hpp"
 #include "dfvn/io/atomic_file.hpp"
+#include "dfvn/io/csv.hpp"
 #include "dfvn/io/png.hpp"
 #include "dfvn/plot/gnuplot.hpp"
 #include "dfvn/reproduce/paper_tables.hpp"
@@ -319,17 +320,18 @@ std::string write_table2(const std::string& out_dir, const Table2Result& r, cons
       "integrator,steps,reprojection_steps,rmse,seconds,megapixels_per_second,width,height,threads,field_evaluations,"
       "rmse_second,second_width,second_height,samples,setting,rmse_8bit_wraparound\n";
   for (const auto& row : r.rows)
-    csv += fmt::format("{},{},{},{:.9g},{:.6f},{:.6g},{},{},{},{},{},{},{},{},{},{:.9g}\n", to_string(row.variant.integrator),
-                       row.variant.steps, row.variant.newton_steps, row.rmse, row.seconds, row.megapixels_per_second,
+    csv += fmt::format("{},{},{},{},{:.6f},{},{},{},{},{},{},{},{},{},{},{}\n", to_string(row.variant.integrator),
+                       row.variant.steps, row.variant.newton_steps, format_real(row.rmse), row.seconds,
+                       format_real(row.megapixels_per_second, 6),
                        r.config.warp.width, r.config.warp.height, r.threads, row.field_evaluations,
                        // Without a second resolution its columns are empty: nothing was measured there.
-                       r.second.width != 0 ? fmt::format("{:.9g}", row.rmse_second) : std::string(),
+                       r.second.width != 0 ? format_real(row.rmse_second) : std::string(),
                        r.second.width != 0 ? std::to_string(r.second.width) : std::string(),
                        r.second.width != 0 ? std::to_string(r.second.height) : std::string(), r.config.warp.samples,
-                       to_string(r.config.setting), row.rmse_wraparound);
+                       to_string(r.config.setting), format_real(row.rmse_wraparound));
   std::string timeline = "time,steps,file\n";
   for (std::size_t i = 0; i < r.timeline.size(); ++i)
-    timeline += fmt::format("{:g},{},time-{:g}.png\n", r.config.figure_times[i], Table2Config::kFigureSteps,
+    timeline += fmt::format("{},{},time-{:g}.png\n", format_real(r.config.figure_times[i]), Table2Config::kFigureSteps,
                             r.config.figure_times[i]);
   const std::string md = table2_markdown(r);
   for (const auto& [name, text] : {std::pair{"table2.csv", csv}, {"table2.md", md}, {"timeline.csv", timeline}})

@@ -81,7 +81,7 @@ std::string point_statistics_csv_header() {
       "input,set,dim,points,nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,median_displacement,"
       "frac_unmoved,neighbour_disorder,lattice_order,seconds_stats,domain_side";
   for (DiscrepancyKind kind : kAllDiscrepancies) header += "," + std::string(csv_column(kind));
-  return header + "\n";
+  return header + ",stat\n";
 }
 
 std::string point_statistics_csv_row(std::string_view input, std::string_view set, const PointSet& points,
@@ -91,8 +91,11 @@ std::string point_statistics_csv_row(std::string_view input, std::string_view se
                                 format_real(s.nearest.min), format_real(s.nearest.q01), format_real(s.nearest.median),
                                 format_real(s.nearest.mean), format_real(s.nearest.median_scaled),
                                 timing ? fmt::format("{:.6f}", s.seconds) : std::string(), format_real(points.domain.side));
-  for (const auto& value : s.discrepancies) row += value ? fmt::format(",{:.17g}", *value) : std::string(",");
-  return row + "\n";
+  for (const auto& value : s.discrepancies) {
+    row += ',';
+    if (value) row += format_real(*value, 17);
+  }
+  return row + ",value\n";
 }
 
 }  // namespace dfvn

@@ -48,9 +48,10 @@ int point_statistics_stage_count(const PointSetStatisticsOptions& options);
 
 // CSV of `dfvn-sample stats`: input,set,dim,points, the nearest-neighbour and displacement columns of the
 // sampling stats (nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,median_displacement,
-// frac_unmoved,neighbour_disorder,lattice_order), seconds_stats,domain_side,cd,wd,md,l2_star. The
-// displacement columns are empty (a file's points have no lattice sites to move from), the discrepancy
-// columns unless computed, seconds_stats with `timing` off.
+// frac_unmoved,neighbour_disorder,lattice_order), seconds_stats,domain_side,cd,wd,md,l2_star,stat (the
+// word "value": one set; experiment/realizations.hpp adds "mean" and "sd" rows). The displacement
+// columns are empty (a file's points have no lattice sites to move from), the discrepancy columns
+// unless computed, seconds_stats with `timing` off. Reals as io/csv.hpp's format_real writes them.
 std::string point_statistics_csv_header();
 std::string point_statistics_csv_row(std::string_view input, std::string_view set, const PointSet& points,
                                      const PointSetStatistics& statistics, bool timing = true);

@@ -116,12 +116,12 @@ void write_spectrum_files(const std::string& prefix, const PowerSpectrum& spectr
       fmt::format_to(std::back_inserter(grid), "{},", static_cast<int>(rest % static_cast<std::size_t>(side)) - spectrum.max_frequency);
       rest /= static_cast<std::size_t>(side);
     }
-    fmt::format_to(std::back_inserter(grid), "{:.9g}\n", spectrum.power[index]);
+    grid += format_real(spectrum.power[index]) + '\n';
   }
   std::string radial = "frequency,power,anisotropy_db,frequencies\n";
   for (std::size_t r = 1; r < spectrum.radial_mean.size(); ++r)
-    fmt::format_to(std::back_inserter(radial), "{},{:.9g},{},{}\n", r, spectrum.radial_mean[r],
-                   spectrum.anisotropy_db[r] ? fmt::format("{:.6g}", *spectrum.anisotropy_db[r]) : std::string(),
+    fmt::format_to(std::back_inserter(radial), "{},{},{},{}\n", r, format_real(spectrum.radial_mean[r]),
+                   spectrum.anisotropy_db[r] ? format_real(*spectrum.anisotropy_db[r], 6) : std::string(),
                    spectrum.shell_counts[r]);
   write_file_atomically(prefix + ".csv", grid);
   write_file_atomically(prefix + "_radial.csv", radial);

@@ -26,7 +26,7 @@ grep -q "hardware threads" "$odd/t2/table2.md" && ok || bad "table2.md does not 
 is_png "$odd/t1/figure4.png" && ok || bad "table1 wrote no figure4.png into $odd"
 grep -q "<br>" "$odd/t1/table1.md" && ! grep -q "<br>" "$work/t1.txt" && ok || bad "table1: <br> belongs in the file only"
 grep -q "ours 0\.[0-9]* ± 0\.[0-9]* (0\.[0-9]* ± 0\.[0-9]*)" "$work/t1.txt" && ok || bad "table1 cells are not mean ± sd: $(cat "$work/t1.txt")"
-grep -q "^\"Jittering\",3,10,jitter,.*,mean," "$odd/t1/table1.csv" && grep -q "^\"Jittering\",3,10,jitter,.*,sd," "$odd/t1/table1.csv" \
+grep -q "^\"Jittering\",3,10,jitter,.*,mean$" "$odd/t1/table1.csv" && grep -q "^\"Jittering\",3,10,jitter,.*,sd$" "$odd/t1/table1.csv" \
   && ok || bad "table1.csv has no mean and sd rows: $(cat "$odd/t1/table1.csv")"
 [[ $(grep -c '^"CNJ (simplex)",3,' "$odd/t1/table1.csv") -eq 4 ]] && ok || bad "table1.csv: 2 simplex rows + mean + sd"
 ! grep -q -e "[4-7]D" "$odd/t1/table1.md" && ok || bad "table1 --dims 3 talks about other dimensions: $(grep -o -m3 '.\{30\}[4-7]D.\{30\}' "$odd/t1/table1.md")"

@@ -5,7 +5,7 @@ set -u
 source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
 # The sampling stats' nearest-neighbour and displacement columns (issue 11), the displacement ones empty.
-header="input,set,dim,points,nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,median_displacement,frac_unmoved,neighbour_disorder,lattice_order,seconds_stats,domain_side,cd,wd,md,l2_star"
+header="input,set,dim,points,nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,median_displacement,frac_unmoved,neighbour_disorder,lattice_order,seconds_stats,domain_side,cd,wd,md,l2_star,stat"
 
 # The same Sobol set as CSV and NPY gives the same statistics.
 "$bin" --dim 3 --grid 5 --methods sobol,jitter --protocol unit --points "$work/p" --format npy --quiet >/dev/null || bad "sample npy"
@@ -19,16 +19,17 @@ cut -d, -f3-14,16-20 "$work/sobol.npy.stats" >"$work/a"
 cut -d, -f3-14,16-20 "$work/sobol.csv.stats" >"$work/b"
 cmp -s "$work/a" "$work/b" && ok || bad "csv and npy statistics differ"
 # Without --discrepancy the columns are empty.
-"$bin" stats --input "$work/p/jitter.csv" | tail -1 | grep -q ",1.0,,,,$" && ok || bad "discrepancy columns not empty"
+"$bin" stats --input "$work/p/jitter.csv" | tail -1 | grep -q ",1.0,,,,,value$" && ok || bad "discrepancy columns not empty"
 # nn_q01 is filled, the displacement columns are empty (a file's points have no lattice sites).
 "$bin" stats --input "$work/p/jitter.csv" | tail -1 | awk -F, '{ exit !($6 != "" && $10 $11 $12 $13 $14 == "") }' && ok ||
   bad "stats --input nn_q01 / displacement columns"
-# A headerless CSV in 1D and a dat file of two 2D sets (mean and sd rows).
+# A headerless CSV in 1D and a dat file of two 2D sets (mean and sd rows: set empty, stat = mean, sd).
 printf '0.1\n0.4\n0.9\n' >"$work/one.csv"
 "$bin" stats --input "$work/one.csv" | tail -1 | cut -d, -f3-5 | grep -qx "1,3,0.3" && ok || bad "1D csv"
 printf '# set 0\n0.1 0.2\n0.3 0.4\n0.8 0.1\n#\n0.5 0.5\n0.2 0.9\n' >"$work/two.dat"
 "$bin" stats --input "$work/two.dat" --discrepancy >"$work/dat.stats" 2>"$work/err" && ok || bad "stats dat: $(cat "$work/err")"
-[[ $(cut -d, -f2 "$work/dat.stats" | tr '\n' ' ') == "set 0 1 mean sd " ]] && ok || bad "dat rows: $(cat "$work/dat.stats")"
+[[ $(awk -F, '{ print $2 "/" $NF }' "$work/dat.stats" | tr '\n' ' ') == "set/stat 0/value 1/value /mean /sd " ]] && ok ||
+  bad "dat rows: $(cat "$work/dat.stats")"
 # Output does not depend on --threads (apart from the timing column).
 "$bin" stats --input "$work/p/sobol.npy" --discrepancy --threads 1 | cut -d, -f1-14,16- >"$work/t1"
 "$bin" stats --input "$work/p/sobol.npy" --discrepancy --threads 2 | cut -d, -f1-14,16- >"$work/t2"
@@ -55,11 +56,12 @@ expect_error "text named .bin" "" "two.bin, bin: .* not UTK .bin records" stats 
 expect_error "missing file" "" "" stats --input "$work/none.csv"
 expect_error "no input" "" "input" stats
 
-# sample --realizations: R rows per method, then its mean and sd.
+# sample --realizations: R rows per method (stat = value), then its mean and sd (seed empty).
 "$bin" --dim 3 --grid 4 --methods jitter,sobol --realizations 3 --seed 5 --quiet >"$work/r.csv" 2>"$work/err" && ok || bad "realizations: $(cat "$work/err")"
 seed_column=$(head -1 "$work/r.csv" | tr ',' '\n' | grep -nx seed | cut -d: -f1)
-[[ $(cut -d, -f3,"$seed_column" "$work/r.csv" | tail -n +2 | tr '\n' ' ') == "jitter,5 sobol,5 jitter,6 sobol,6 jitter,7 sobol,7 jitter,mean jitter,sd sobol,mean sobol,sd " ]] \
-  && ok || bad "realization rows: $(cut -d, -f3,"$seed_column" "$work/r.csv" | tr '\n' ' ')"
+rows=$(awk -F, -v s="$seed_column" 'NR > 1 { print $3 "," $s "," $NF }' "$work/r.csv" | tr '\n' ' ')
+[[ $rows == "jitter,5,value sobol,5,value jitter,6,value sobol,6,value jitter,7,value sobol,7,value jitter,,mean jitter,,sd sobol,,mean sobol,,sd " ]] \
+  && ok || bad "realization rows: $rows"
 expect_error "sets in csv" "" "--points writes the 2 sets of --sets into one file: --format dat, npy or bin" \
   --dim 3 --grid 4 --realizations 2 --points "$work/rp"
 expect_error "realizations and rdf" "" "--rdf takes one realization" --dim 3 --grid 4 -m 2 --rdf "$work/rp.csv"

@@ -215,6 +215,7 @@ TEST(Experiment, StatsColumnsAreNumbersOrEmpty) {
   for (const char* name : {"frequency", "trace_time", "dropped", "radius", "saturated", "rms_displacement"})
     EXPECT_EQ(sobol[column(name)], "") << name;
   EXPECT_EQ(sobol[column("domain_side")], "0.6");
+  EXPECT_EQ(sobol[column("stat")], "value");  // a realization's row (summary rows: mean, sd)
   EXPECT_NE(split_row(stats_csv_row(c, results[2], true))[column("seconds_generate")], "");
 }
 

@@ -19,15 +19,23 @@ TEST(Realizations, MeanAndSampleStandardDeviation) {
   EXPECT_EQ(mean_sd({7.0}).sd, 0.0);
 }
 
+// Issue 24: the summary rows keep every column's type. The label (seed) is empty, the word column
+// stat says mean or sd, reals get their mean and sd as reals ("0.25", "0.0"), and integer columns
+// (counts: their mean need not be an integer) and words stay empty.
 TEST(Realizations, SummaryRowsPerGroup) {
-  const std::string header = "method,points,nn_min,seed,notes";
-  const std::vector<std::string> rows = {"cnj,10,0.5,1,\"a b\"", "pds,8,0.25,1,\"x\"", "cnj,12,0.7,2,\"c\"",
-                                         "pds,8,0.25,2,\"y\""};
+  const std::string header = "method,points,nn_min,side,seed,notes,stat";
+  const std::vector<std::string> rows = {"cnj,10,0.5,1.0,1,\"a b\",value", "pds,8,0.25,1.0,1,\"x\",value",
+                                         "cnj,12,0.7,1.0,2,\"c\",value", "pds,8,0.25,1.0,2,\"y\",value"};
   EXPECT_EQ(realization_summary_rows(header, rows, {"method"}, "seed"),
-            "cnj,11,0.6,mean,\n"
-            "cnj,1.41421356,0.141421356,sd,\n"
-            "pds,8,0.25,mean,\n"
-            "pds,0,0,sd,\n");
+            "cnj,,0.6,1.0,,,mean\n"
+            "cnj,,0.141421356,0.0,,,sd\n"
+            "pds,,0.25,1.0,,,mean\n"
+            "pds,,0.0,0.0,,,sd\n");
+  // A column that is empty or not a real in some row of a group has no mean there.
+  EXPECT_EQ(realization_summary_rows("method,g,seed,stat", {"a,0.5,1,value", "a,,2,value"}, {"method"}, "seed"),
+            "a,,,mean\na,,,sd\n");
+  EXPECT_THROW(realization_summary_rows("method,g,seed", {"a,0.5,1"}, {"method"}, "seed"), std::invalid_argument)
+      << "no stat column";
 }
 
 TEST(PointSetStatistics, OneDimensionalNearestNeighboursBySorting) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <sstream>
 #include <vector>
 
@@ -119,6 +120,20 @@ TEST(Csv, RealsKeepTheirTypeInEveryRun) {
   EXPECT_EQ(format_real(1e-5), "1e-05");
   EXPECT_EQ(format_real(-3.0), "-3.0");
   EXPECT_EQ(format_real(123456789012.0), "1.23456789e+11");
+  EXPECT_EQ(format_real(0.0), "0.0");
+  EXPECT_EQ(format_real(2.0, 6), "2.0");
+  EXPECT_EQ(format_real(1e6, 6), "1e+06");
+  // One spelling each for the values that are not finite.
+  EXPECT_EQ(format_real(std::nan("")), "nan");
+  EXPECT_EQ(format_real(HUGE_VAL), "inf");
+  EXPECT_EQ(format_real(-HUGE_VAL), "-inf");
+  // The 17-digit form of point coordinates and field values: a decimal point too, appended in place.
+  std::string s = "x,";
+  append_double(s, 0.0);
+  append_double(s += ',', 1.0);
+  append_double(s += ',', 0.5);
+  append_double(s += ',', -2e300);
+  EXPECT_EQ(s, "x,0.0,1.0,0.5,-2.0000000000000001e+300");
 }
 
 }  // namespace
