@@ -86,8 +86,8 @@ struct SampleCommand : Subcommand {
         ->capture_default_str()
         ->check(CLI::IsMember({"paper", "unit"}));
     stats_option = cmd->add_option("-o,--output,--stats", stats_path,
-                                   "Output: the statistics CSV ('-' = standard output); --stats is its second name. Point\n"
-                                   "sets go to --points")
+                                   "Main output: the statistics CSV ('-' = standard output); --stats is its second name.\n"
+                                   "Point sets go to --points")
                        ->capture_default_str();
     cmd->add_option("--rdf", rdf_path, "Also compute radial distribution functions and write them to this CSV (dim,method,r,g)");
     cmd->add_option("--rdf-max", config.rdf.r_max, "Largest r of the RDF; 0 = 2.5 mean spacings")
@@ -101,7 +101,7 @@ struct SampleCommand : Subcommand {
     cmd->add_option("--points", points_dir,
                     "Write each point set to DIR/<method>.<format>; '-' = standard output (one method only)");
     format_option = cmd->add_option("--format", format,
-                                    "Point file format (with --points): csv (header x0..x{N-1}), npy (float64, (points, N))\n"
+                                    "Point file format (of --points): csv (header x0..x{N-1}), npy (float64, (points, N))\n"
                                     "or dat (coordinates separated by spaces, no header: UTK's and pbrt's pspec text format)")
                         ->capture_default_str()
                         ->check(CLI::IsMember({"csv", "npy", "dat"}));
@@ -110,7 +110,7 @@ struct SampleCommand : Subcommand {
                     "Also write the run as JSON: parameters, every method's statistics and derived values ('-' = standard\n"
                     "output)");
     cmd->add_flag("--no-timing", no_timing,
-                  "Leave the seconds columns empty (and out of --json): two runs with the same seed give identical files");
+                  "Leave the seconds columns (seconds_generate, seconds_stats) empty (and out of --json): two runs with the same seed give identical files");
     cmd->add_option("--knn", knn, "KD-tree backend: nanoflann or flann (identical distances)")
         ->capture_default_str()
         ->check(CLI::IsMember({"nanoflann", "flann"}));

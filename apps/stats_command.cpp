@@ -45,11 +45,12 @@ struct StatsCommand : Subcommand {
         "Statistics of any point set in [0,S]^N, N = 1..8: nearest-neighbour summary and, with --discrepancy, the\n"
         "CD, WD, MD and L2-star discrepancies (as scipy.stats.qmc.discrepancy). One CSV row per set; a dat file\n"
         "with several sets also gets their mean and sd rows (set = mean, sd).");
-    cmd->add_option("--input", input, "Point file: CSV (optional header), NPY float64/float32 (points, N), or dat\n"
-                                      "(whitespace-separated, '#' lines between sets)")
+    cmd->add_option("--input", input, "Point file to read: CSV (optional header), NPY float64/float32 (points, N), or\n"
+                                      "dat (whitespace-separated, '#' lines between sets)")
         ->required()
         ->check(CLI::ExistingFile);
-    cmd->add_option("--format", format, "csv, npy or dat; default: from the extension (.txt = dat)")
+    cmd->add_option("--format", format, "Point file format (of --input): csv, npy or dat; default: from the extension\n"
+                                        "(.txt = dat)")
         ->check(CLI::IsMember({"csv", "npy", "dat"}));
     cmd->add_option("--domain-side", domain_side, "The points lie in [0, S]^N, S in [2^-1000, 2^1000]")
         ->capture_default_str()
@@ -61,13 +62,16 @@ struct StatsCommand : Subcommand {
     cmd->add_flag("--periodic", periodic,
                   "Measure on the torus [0,S)^N: minimum-image nearest-neighbour distances (opposite faces\n"
                   "identified), as for sets made periodic (dfvn-sample --domain torus, UTK's periodic samplers)");
-    output_option = cmd->add_option("-o,--output", output, "Statistics CSV ('-' = standard output)")->capture_default_str();
-    cmd->add_option("--json", json_path, "Also write the statistics as JSON ('-' = standard output)");
-    cmd->add_flag("--no-timing", no_timing, "Leave seconds_stats empty (and out of --json): identical files for identical input");
+    output_option = cmd->add_option("-o,--output", output, "Main output: the statistics CSV ('-' = standard output)")
+                        ->capture_default_str();
+    cmd->add_option("--json", json_path, "Also write the statistics as JSON: every set's values ('-' = standard output)");
+    cmd->add_flag("--no-timing", no_timing,
+                  "Leave the seconds column (seconds_stats) empty (and out of --json): identical files for identical input");
     cmd->add_option("--spectrum", spectrum_prefix,
                     "2D/3D sets: also write the power spectrum averaged over the file's sets: PREFIX.csv (k0..,power),\n"
                     "PREFIX_radial.csv (frequency,power,anisotropy_db,frequencies) and, with gnuplot, PREFIX.png");
-    cmd->add_option("--spectrum-frequency", spectrum_frequency, "Largest integer frequency K of the spectrum ([-K,K]^N)")
+    cmd->add_option("--spectrum-frequency", spectrum_frequency,
+                    "Largest integer frequency K of the spectrum ([-K,K]^N), in cycles per domain side S")
         ->capture_default_str()
         ->check(CLI::Range(1, 512));
     progress.add_to(*cmd);
