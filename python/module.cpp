@@ -19,7 +19,8 @@ std::string python_message(std::string message) {
   static const std::pair<std::string_view, std::string_view> kKeywords[] = {
       {"--dim", "dim"},           {"--grid", "grid"},           {"-n", "n"},
       {"--seed", "seed"},         {"--threads", "threads"},     {"--methods", "method"},
-      {"--frequency", "frequency"}, {"--step-scale", "step_scale"}, {"--steps", "steps"},
+      {"--frequency", "frequency"}, {"--cycles-per-spacing", "frequency"}, {"--step-scale", "step_scale"},
+      {"--steps", "steps"},
       {"--noise", "noise"},       {"--integrator", "integrator"}, {"--reproject", "reprojection"},
       {"--protocol", "protocol"}, {"--scramble", "scramble"},   {"--pds-radius", "radius"},
       {"--pds-candidates", "ncandidates"}, {"--max-memory GIB", "max_memory_gib"},
