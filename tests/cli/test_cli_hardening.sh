@@ -166,7 +166,7 @@ expect_no_temporaries "after the output tests" "$work/targets"
 
 # Two outputs of one run on one path are refused, whatever the spelling.
 expect_error "same --rdf and --stats" "" "" --dim 3 --grid 4 --methods jitter --rdf x.csv --stats x.csv
-expect_message "same --rdf and --stats" "--stats and --rdf"
+expect_message "same --rdf and --stats" "--output and --rdf"
 expect_error "same path spelled twice" "" "" --dim 3 --grid 4 --methods jitter --rdf ./x.csv --stats "$work/targets/x.csv"
 expect_error "--stats through a link to --rdf" "" "" --dim 3 --grid 4 --methods jitter --rdf target.csv --stats link2.csv
 ln target.csv hard.csv
