@@ -80,7 +80,11 @@ std::vector<std::string> with_default_subcommand(int argc, char** argv) {
 // only the first level's options and leaves out reproduce's subcommands). Each subcommand's help is
 // indented under a line "dfvn-sample reproduce table1:", which help2man makes a section of the man page.
 std::string complete_help(CLI::App& app) {
-  std::string text = app.help("", CLI::AppFormatMode::Normal);
+  // CLI11 names a subcommand in its usage line by the path it is given ("dfvn-sample reproduce").
+  std::string parents;
+  for (const CLI::App* p = app.get_parent(); p != nullptr; p = p->get_parent())
+    parents = p->get_name() + (parents.empty() ? "" : " " + parents);
+  std::string text = app.help(parents, CLI::AppFormatMode::Normal);
   const CLI::App* root = &app;
   while (root->get_parent() != nullptr) root = root->get_parent();
   const std::string footer = root->get_footer();
@@ -88,21 +92,15 @@ std::string complete_help(CLI::App& app) {
     for (CLI::App* sub : parent.get_subcommands([](CLI::App*) { return true; })) {
       const std::string name = path + " " + sub->get_name();
       text += "\n" + name + ":\n";
-      std::string help = sub->help("", CLI::AppFormatMode::Normal);
+      std::string help = sub->help(path, CLI::AppFormatMode::Normal);
       // The program's footer, which every subcommand inherits, is printed once, at the top.
       if (const std::size_t at = help.rfind(footer); !footer.empty() && at != std::string::npos) help.erase(at);
       while (help.size() >= 2 && help.substr(help.size() - 2) == "\n\n") help.pop_back();
-      for (std::string line : CLI::detail::split(help, '\n')) {
-        // Outside a parse CLI11 names only the subcommand itself in its usage line.
-        if (line.rfind("Usage: " + sub->get_name() + " ", 0) == 0) line = "Usage: " + name + line.substr(7 + sub->get_name().size());
-        text += line.empty() ? "\n" : "  " + line + "\n";
-      }
+      for (const std::string& line : CLI::detail::split(help, '\n')) text += line.empty() ? "\n" : "  " + line + "\n";
       add(*sub, name);
     }
   };
-  std::string path = app.get_name();
-  for (const CLI::App* p = app.get_parent(); p != nullptr; p = p->get_parent()) path = p->get_name() + " " + path;
-  add(app, path);
+  add(app, parents.empty() ? app.get_name() : parents + " " + app.get_name());
   return text;
 }
 
