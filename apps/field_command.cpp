@@ -44,7 +44,7 @@ struct FieldCommand : Subcommand {
         "Writes x0..x{N-1},c0..c{N-1},f1..f{N-1}: the point, the field vector c = cross(grad f_1..f_{N-1})\n"
         "(Eq. 8, RMS |c| = 1) and the N-1 noise values, with 17 significant digits.");
     add_dimension_option(*cmd, dimension,
-                         "Dimension N of the points (2..8); default: the column count of the input's first line\n"
+                         "Dimension N (2..8) of the points; default: the column count of the input's first line\n"
                          "(3 with --diagnose)");
     cmd->add_option("--frequency", frequency,
                     "Noise frequency F in cycles per unit length (one cycle = 2 pi / k_eff of the basis):\n"
@@ -68,7 +68,7 @@ struct FieldCommand : Subcommand {
         ->capture_default_str()
         ->check(CLI::Range(std::nextafter(0.0, 1.0), 0.25));
     CLI::Option* input_option =
-        cmd->add_option("--input", input, "Point file, CSV or whitespace-separated (default: standard input)")
+        cmd->add_option("--input", input, "Point file to read, CSV or whitespace-separated (default: standard input)")
             ->check(CLI::ExistingFile);
     CLI::Option* diagnose_flag = cmd->add_flag(
         "--diagnose", diagnose,
@@ -82,7 +82,9 @@ struct FieldCommand : Subcommand {
     cmd->add_option("--periods", diagnosis.periods, "With --diagnose: the points fill [0, periods / F]^N")
         ->capture_default_str()
         ->check(CLI::Range(1e-3, 1e9));
-    cmd->add_option("-o,--output", output, "Output CSV file, written whole or not at all ('-' = standard output)")
+    cmd->add_option("-o,--output", output,
+                    "Main output: the CSV of points, field vectors and noise values (with --diagnose: the diagnosis\n"
+                    "row), written whole or not at all ('-' = standard output)")
         ->capture_default_str();
     add_common_options(*cmd, common);
     cmd->callback([this] { run(); });

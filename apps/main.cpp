@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <new>
 #include <string>
@@ -13,6 +14,7 @@
 #include "dfvn/core/message_text.hpp"
 #include "dfvn/io/atomic_file.hpp"
 #include "options.hpp"
+#include "dfvn/sampling/method.hpp"
 
 namespace {
 
@@ -74,8 +76,36 @@ std::vector<std::string> with_default_subcommand(int argc, char** argv) {
   return args;
 }
 
+// --help-all: the help of `app` and then of every subcommand below it, depth first (CLI11's own lists
+// only the first level's options and leaves out reproduce's subcommands). Each subcommand's help is
+// indented under a line "dfvn-sample reproduce table1:", which help2man makes a section of the man page.
+std::string complete_help(CLI::App& app) {
+  // CLI11 names a subcommand in its usage line by the path it is given ("dfvn-sample reproduce").
+  std::string parents;
+  for (const CLI::App* p = app.get_parent(); p != nullptr; p = p->get_parent())
+    parents = p->get_name() + (parents.empty() ? "" : " " + parents);
+  std::string text = app.help(parents, CLI::AppFormatMode::Normal);
+  const CLI::App* root = &app;
+  while (root->get_parent() != nullptr) root = root->get_parent();
+  const std::string footer = root->get_footer();
+  const std::function<void(CLI::App&, const std::string&)> add = [&](CLI::App& parent, const std::string& path) {
+    for (CLI::App* sub : parent.get_subcommands([](CLI::App*) { return true; })) {
+      const std::string name = path + " " + sub->get_name();
+      text += "\n" + name + ":\n";
+      std::string help = sub->help(path, CLI::AppFormatMode::Normal);
+      // The program's footer, which every subcommand inherits, is printed once, at the top.
+      if (const std::size_t at = help.rfind(footer); !footer.empty() && at != std::string::npos) help.erase(at);
+      while (help.size() >= 2 && help.substr(help.size() - 2) == "\n\n") help.pop_back();
+      for (const std::string& line : CLI::detail::split(help, '\n')) text += line.empty() ? "\n" : "  " + line + "\n";
+      add(*sub, name);
+    }
+  };
+  add(app, parents.empty() ? app.get_name() : parents + " " + app.get_name());
+  return text;
+}
+
 // Without arguments: what the tool does and how to start, instead of starting a long job.
-constexpr const char* kUsage =
+constexpr const char* kUsageText =
     "dfvn-sample: divergence-free vector noise (DFVN) in 2..8 dimensions, curl noise jittering of lattices\n"
     "and the point-set statistics of 'Improving Curl Noise' (SIGGRAPH Asia 2025).\n"
     "\n"
@@ -93,11 +123,19 @@ constexpr const char* kUsage =
     "'dfvn-sample SUBCOMMAND --help' lists a subcommand's options and defaults; --help-all lists every one;\n"
     "--version prints the version.\n";
 
+// The usage and the list of methods (--methods), from dfvn::kAllMethods.
+std::string usage() {
+  std::string text = kUsageText;
+  const std::string marker = "\nSubcommands:";
+  text.insert(text.find(marker), "  methods (--methods): " + dfvn::method_names() + "\n");
+  return text;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc == 1) {
-    std::fputs(kUsage, stdout);
+    std::fputs(usage().c_str(), stdout);
     return 0;
   }
   CLI::App app{"dfvn-sample: divergence-free vector noise (DFVN) in 2..8 dimensions: the field, curl-noise\n"
@@ -120,8 +158,9 @@ int main(int argc, char** argv) {
     app.parse(args);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+  } catch (const CLI::CallForAllHelp&) {
+    std::fputs(complete_help(*deepest_subcommand(app)).c_str(), stdout);
+    return 0;
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {

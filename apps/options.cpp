@@ -123,6 +123,16 @@ void add_noise_option(CLI::App& cmd, std::string& noise) {
       ->check(CLI::IsMember({"simplex", "turning-bands", "quintic-gradient"}));
 }
 
+void refuse_options(CLI::App& cmd, const std::vector<std::pair<std::string, std::string>>& names_and_messages) {
+  std::vector<std::pair<const CLI::Option*, std::string>> refused;
+  for (const auto& [name, message] : names_and_messages)
+    refused.emplace_back(cmd.add_option(name, "")->group("")->expected(0, 1), message);
+  cmd.parse_complete_callback([refused] {
+    for (const auto& [option, message] : refused)
+      if (option->count() > 0) fail(message, 2);
+  });
+}
+
 void add_threads_option(CLI::App& app, int& threads) {
   app.add_option("--threads", threads, "Worker threads: 0 = all cores, at most 4 x the cores (output never depends on it)")
       ->capture_default_str()

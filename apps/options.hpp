@@ -41,6 +41,11 @@ CLI::Option* add_dimension_option(CLI::App& cmd, int& dimension, const std::stri
 // --noise: the basis of the N-1 noise functions.
 void add_noise_option(CLI::App& cmd, std::string& noise);
 
+// Names that no longer mean what they meant here (issue 24's one vocabulary), each with the line that
+// names the option to use instead: hidden from the help, and giving one (with a value or without)
+// stops the run with its line as soon as the subcommand is parsed. Never reinterpreted silently.
+void refuse_options(CLI::App& cmd, const std::vector<std::pair<std::string, std::string>>& names_and_messages);
+
 // Options that every subcommand shares.
 struct CommonOptions {
   std::uint64_t seed = 1;

@@ -13,11 +13,14 @@
 #include "dfvn/reproduce/cnj_study.hpp"
 #include "dfvn/reproduce/integration.hpp"
 #include "dfvn/reproduce/reproduce.hpp"
+#include "dfvn/sampling/method.hpp"
 
 #include "options.hpp"
 
 namespace dfvn_cli {
 namespace {
+
+constexpr const char* kOutDirHelp = "Output directory (made if missing; its files are listed above)";
 
 struct ReproduceCommand : Subcommand {
   CommonOptions common1, common2, common3, common4;
@@ -41,15 +44,15 @@ struct ReproduceCommand : Subcommand {
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand("reproduce", "Regenerate the paper's tables and figures, ours beside the paper's.");
     cmd->require_subcommand(1);
-    cmd->footer("Subcommands: table1, table2 ('dfvn-sample reproduce table1 --help').");
     CLI::App* t1 = cmd->add_subcommand(
         "table1",
         "Table 1 and Figure 4: CNJ, jittering, Poisson disk and Sobol point sets in 3D-7D under the paper protocol.\n"
         "Writes DIR/table1.csv, DIR/rdf.csv, DIR/table1.md and (with gnuplot) DIR/figure4.png; prints table1.md as plain text.");
-    t1->add_option("--out", out1, "Output directory")->capture_default_str();
+    t1->add_option("--out", out1, kOutDirHelp)->capture_default_str();
     t1->add_option("--dims", dims, "Dimensions: a range or list within 3..7, e.g. 3-7 or 3,5")->capture_default_str();
     t1->add_option("--realizations", table1_realizations,
-                   "Realizations R (seeds s..s+R-1); cells are mean +- sd over them (each about 100 s for 3D-7D on 2 cores)")
+                   "Realizations R: independently seeded repeats, seeds s..s+R-1; cells are mean +- sd over them\n"
+                   "(each about 100 s for 3D-7D on 2 cores)")
         ->capture_default_str()
         ->check(CLI::Range(1, 1000));
     add_noise_option(*t1, table1_noise);  // the CNJ column; the simplex column is always shown beside it
@@ -63,11 +66,12 @@ struct ReproduceCommand : Subcommand {
         "and 10 Newton reprojection steps, against 2048 RK4 steps; RMSE from float values at two resolutions; Figure 5's\n"
         "top row at several times t with 1000 RK4 steps. Writes DIR/table2.csv, DIR/table2.md, DIR/timeline.csv, the\n"
         "images as PNG and (with gnuplot) DIR/figure5.png; prints table2.md as plain text.");
-    t2->add_option("--out", out2, "Output directory")->capture_default_str();
+    t2->add_option("--out", out2, kOutDirHelp)->capture_default_str();
     t2->add_option("--setting", setting,
                    "shader: the paper's shader (2D quintic gradient noise, noise_scale 7, its unnormalised field\n"
                    "magnitude 7 sigma = 5.049 widths per unit time, t = 0.5, its wave-band image); ours: simplex noise,\n"
-                   "3 cycles per width, RMS |c| = 1, sine stripes (the earlier default)")
+                   "3 cycles per width, RMS |c| = 1, sine stripes (the earlier default). The image is one unit wide\n"
+                   "(x in [0, 1] across it): per width is per unit length")
         ->capture_default_str()
         ->check(CLI::IsMember({"shader", "ours"}));
     t2->add_option("--width", warp.width, "Image width in pixels")->capture_default_str()->check(CLI::Range(2, 20000));
@@ -80,11 +84,13 @@ struct ReproduceCommand : Subcommand {
         ->capture_default_str()
         ->check(CLI::IsMember({1, 4, 9, 16, 25, 36, 49, 64}));
     t2->add_option("--frequency", frequency,
-                   "Noise frequency in cycles per image width (one cycle = 2 pi / k_eff); default: the setting's\n"
-                   "(shader: 7 k_eff / (2 pi) = 4.562, ours: 3)")
+                   "Noise frequency F in cycles per unit length (one cycle = 2 pi / k_eff of the basis; the image is\n"
+                   "one unit wide, so F cycles across it); default: the setting's (shader: 7 k_eff / (2 pi) = 4.562,\n"
+                   "ours: 3)")
         ->check(kNoiseFrequency);
     t2->add_option("--field-magnitude", field_magnitude,
-                   "RMS speed of the field in image widths per unit time, in [1e-6, 1e6]; default: the setting's\n"
+                   "RMS speed of the field in unit lengths (image widths) per unit time, in [1e-6, 1e6]; default: the\n"
+                   "setting's\n"
                    "(shader: 5.049, ours: 1)")
         ->check(CLI::Range(1e-6, 1e6));
     progress.add_to(*t2);
@@ -102,9 +108,10 @@ struct ReproduceCommand : Subcommand {
             "prints the Markdown as plain text.\n"
             "The CNJ defaults come from this study's rule (data/cnj_defaults.md).",
             dfvn::kFreeFieldSteps));
-    s->add_option("--out", study.out_dir, "Output directory")->capture_default_str();
+    s->add_option("--out", study.out_dir, kOutDirHelp)->capture_default_str();
     s->add_option("--dims", study_dims, "Dimensions: a range or list within 3..7, e.g. 3-7 or 3,5")->capture_default_str();
-    s->add_option("--seeds", study.seeds, "Seeds per cell (--seed, --seed + 1, ...)")
+    s->add_option("--realizations", study.seeds,
+                  "Realizations R per cell: independently seeded repeats, seeds s..s+R-1 (--seed, --seed + 1, ...)")
         ->capture_default_str()
         ->check(CLI::Range(1, 1000));
     s->add_option("--lattice", study_lattice,
@@ -113,14 +120,16 @@ struct ReproduceCommand : Subcommand {
         ->capture_default_str()
         ->check(CLI::IsMember({"interior", "paper"}));
     s->add_option("--noises", study_bases, "Comma list of noise bases to study")->delimiter(',')->capture_default_str();
-    s->add_option("--frequencies", study.frequencies, "Comma list of noise frequencies, cycles per lattice spacing")
+    s->add_option("--cycles-per-spacing", study.frequencies,
+                  "Comma list of CNJ noise frequencies C in cycles per lattice spacing (the field's frequency is\n"
+                  "C / spacing in cycles per unit length)")
         ->delimiter(',')
         ->capture_default_str();
     s->add_option("--step-scales", study.step_scales, "Comma list of step scales C (t = C dbar(N) spacing)")
         ->delimiter(',')
         ->capture_default_str();
     s->add_option("--steps", study.steps,
-                  fmt::format("Comma list of integration steps M per trace (RK4 steps of t / M, each followed by\n"
+                  fmt::format("Comma list of CNJ integration steps M per trace (RK4 steps of t / M, each followed by\n"
                               "the reprojection; Section 5.1 takes 1, the free field's default is {})",
                               dfvn::kFreeFieldSteps))
         ->delimiter(',')
@@ -128,8 +137,15 @@ struct ReproduceCommand : Subcommand {
         ->check(CLI::Range(1, dfvn::CnjOptions::kMaxSteps));
     progress.add_to(*s);
     add_common_options(*s, common3);
+    refuse_options(*s, {{"--seeds", "cnj-study's --seeds is now --realizations R (seeds s..s+R-1), as in every subcommand"},
+                        {"--frequencies",
+                         "cnj-study takes CNJ's noise frequencies per lattice spacing as --cycles-per-spacing C1,C2,... "
+                         "(--frequency means cycles per unit length)"}});
     s->callback([this] { run_cnj_study(); });
     add_integration(cmd);
+    // After the subcommands, which would otherwise inherit it.
+    cmd->footer("Subcommands: table1, table2, cnj-study, integration; each has --help ('dfvn-sample reproduce table1\n"
+                "--help'), and 'dfvn-sample --help-all' prints them all.");
   }
 
   void run_cnj_study() {
@@ -154,15 +170,17 @@ struct ReproduceCommand : Subcommand {
         "Section 6.1's open question: integrate Genz's six test families with every method's point sets in 3D-7D, at\n"
         "several sizes, over R realizations. Writes DIR/integration.csv, DIR/integration_slopes.csv, DIR/integration.md\n"
         "(tables and a reading) and (with gnuplot) DIR/integration_<N>d.png; prints integration.md as plain text.");
-    t3->add_option("--out", integration.out_dir, "Output directory")->capture_default_str();
+    t3->add_option("--out", integration.out_dir, kOutDirHelp)->capture_default_str();
     t3->add_option("--dims", integration_dims, "Dimensions: a range or list within 3..7")->capture_default_str();
-    t3->add_option("--realizations", integration.realizations, "Realizations R (seeds s..s+R-1); at least 16 for the reading")
+    t3->add_option("--realizations", integration.realizations,
+                   "Realizations R: independently seeded repeats, seeds s..s+R-1; at least 16 for the reading")
         ->capture_default_str()
         ->check(CLI::Range(2, 100000));
     t3->add_option("--max-points", integration.max_points, "Largest lattice K^N per dimension")
         ->capture_default_str()
         ->check(CLI::Range(64, 1 << 24));
-    t3->add_option("--methods", integration_methods, "Comma list of methods")->capture_default_str();
+    t3->add_option("--methods", integration_methods, "Comma list of methods, of " + dfvn::method_names())
+        ->capture_default_str();
     progress.add_to(*t3);
     add_common_options(*t3, common4);
     t3->callback([this] { run_integration(); });

@@ -3,12 +3,14 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "dfvn/core/message_text.hpp"
 #include "dfvn/core/repeats.hpp"
 #include "dfvn/core/seeds.hpp"
 #include "dfvn/experiment/experiment.hpp"
@@ -16,6 +18,7 @@
 #include "dfvn/experiment/realizations.hpp"
 #include "dfvn/io/atomic_file.hpp"
 #include "dfvn/io/point_file.hpp"
+#include "dfvn/sampling/method.hpp"
 
 #include "options.hpp"
 
@@ -41,7 +44,7 @@ struct SampleCommand : Subcommand {
   std::string domain{dfvn::to_string(dfvn::kDefaultCnjDomain)};
   std::string domain_mode = "conformant";
   std::string bound = "eq13";
-  CLI::Option* bound_options[2] = {};  // --bound, --boundary-width: only where CNJ meets a boundary
+  CLI::Option* bound_options[2] = {};  // --bound, --boundary-spacings: only where CNJ meets a boundary
   CLI::Option* domain_option = nullptr;
   std::string on = "none";
   CLI::Option* methods_option = nullptr;
@@ -58,7 +61,8 @@ struct SampleCommand : Subcommand {
         "Jitter a K^N lattice along the DFVN field (curl noise jittering, Section 5.1) and compare it with\n"
         "random jitter, Poisson disk sampling and Sobol points by nearest-neighbour statistics (CSV).\n"
         "This is the main job: 'dfvn-sample --dim 7 --grid 6' (any options) runs it. Other subcommands:\n"
-        "field, stats, reproduce ('dfvn-sample --help'); each has --help.");
+        "field, stats, reproduce ('dfvn-sample --help'); each has --help.\n"
+        "Methods: " + dfvn::method_names() + ".");
     add_dimension_option(*cmd, config.dimension, "Dimension N (2..8)")->capture_default_str();
     CLI::Option* grid_option = cmd->add_option("--grid", config.grid, "Lattice points per axis K (>= 2); K^N points")
                                    ->capture_default_str()
@@ -71,9 +75,10 @@ struct SampleCommand : Subcommand {
         ->excludes(grid_option);
     methods_option =
         cmd->add_option("--methods", methods,
-                        "Comma list of cnj, jitter-matched (jitter moved as far as CNJ: its RMS displacement, on CNJ's\n"
-                        "lattice and domain), jitter (the protocol's fixed half-width), pds, sobol, random, halton\n"
-                        "(scrambled unless --scramble none), lhs; with --on sphere: cnj,random")
+                        "Comma list of methods, of " + dfvn::method_names() +
+                            ". jitter-matched: jitter moved as far as CNJ (its RMS displacement, on CNJ's lattice and\n"
+                            "domain); jitter: the protocol's fixed half-width; halton: scrambled unless --scramble none;\n"
+                            "with --on sphere: cnj,random")
             ->capture_default_str();
     cmd->add_option("--protocol", protocol,
                     "paper: Section 5.1 as the paper ran it (lattice linspace(0.05, 0.95, K), jitter +-0.05, PDS\n"
@@ -81,8 +86,11 @@ struct SampleCommand : Subcommand {
                     "[0,1]^N at the density of a cell-centred K^N lattice (jitter +-1/(2K), PDS radius 1/K)")
         ->capture_default_str()
         ->check(CLI::IsMember({"paper", "unit"}));
-    stats_option = cmd->add_option("-o,--stats", stats_path, "Statistics CSV ('-' = standard output)")->capture_default_str();
-    cmd->add_option("--rdf", rdf_path, "Also compute radial distribution functions and write them here (CSV: dim,method,r,g)");
+    stats_option = cmd->add_option("-o,--output,--stats", stats_path,
+                                   "Main output: the statistics CSV ('-' = standard output); --stats is its second name.\n"
+                                   "Point sets go to --points")
+                       ->capture_default_str();
+    cmd->add_option("--rdf", rdf_path, "Also compute radial distribution functions and write them to this CSV (dim,method,r,g)");
     cmd->add_option("--rdf-max", config.rdf.r_max, "Largest r of the RDF; 0 = 2.5 mean spacings")
         ->capture_default_str()
         ->check(kNonNegativeFinite);
@@ -95,7 +103,7 @@ struct SampleCommand : Subcommand {
                     "Write each method's point sets to DIR/<method>.<format>, the M sets of --sets M in one file;\n"
                     "'-' = standard output (one method only)");
     format_option = cmd->add_option("--format", format,
-                                    "Point file format (with --points): csv (header x0..x{N-1}; one set only), npy (float64,\n"
+                                    "Point file format (of --points): csv (header x0..x{N-1}; one set only), npy (float64,\n"
                                     "(points, N); M sets: (M, points, N), sets of one size), dat (coordinates separated by\n"
                                     "spaces, no header, a line '#' between sets: UTK's and pbrt's pspec text format) or bin\n"
                                     "(UTK's binary: per set a uint32 point count, then the float64 coordinates)")
@@ -106,7 +114,7 @@ struct SampleCommand : Subcommand {
                     "Also write the run as JSON: parameters, every method's statistics and derived values ('-' = standard\n"
                     "output)");
     cmd->add_flag("--no-timing", no_timing,
-                  "Leave the seconds columns empty (and out of --json): two runs with the same seed give identical files");
+                  "Leave the seconds columns (seconds_generate, seconds_stats) empty (and out of --json): two runs with the same seed give identical files");
     cmd->add_option("--knn", knn, "KD-tree backend: nanoflann or flann (identical distances)")
         ->capture_default_str()
         ->check(CLI::IsMember({"nanoflann", "flann"}));
@@ -126,9 +134,9 @@ struct SampleCommand : Subcommand {
                     "lattice neighbours (Section 5.1); RMS |c| = 1, so t is the RMS move; at most 2^20")
         ->capture_default_str()
         ->check(kStepScale);
-    cmd->add_option("--frequency", config.cnj.frequency,
-                    "CNJ noise frequency in cycles per lattice spacing (one cycle = 2 pi / k_eff of the basis); the\n"
-                    "field's, this / spacing, must be in [2^-50, 2^50]")
+    cmd->add_option("--cycles-per-spacing", config.cnj.frequency,
+                    "CNJ noise frequency C in cycles per lattice spacing (one cycle = 2 pi / k_eff of the basis); the\n"
+                    "field's frequency, C / spacing in cycles per unit length, must be in [2^-50, 2^50]")
         ->capture_default_str()
         ->check(kNoiseFrequency);
     add_noise_option(*cmd, noise);
@@ -139,7 +147,7 @@ struct SampleCommand : Subcommand {
                                     "Where CNJ's points stay: torus ([0,1)^N with opposite faces identified: a periodic\n"
                                     "field, wrapped traces, the cell-centred lattice; no boundary at all), cube ([0,1]^N)\n"
                                     "or ball (its inscribed ball; the lattice clipped to it). Not given: torus, or cube\n"
-                                    "when --domain-mode drop, --bound or --boundary-width asks for a boundary")
+                                    "when --domain-mode drop, --bound or --boundary-spacings asks for a boundary")
                         ->capture_default_str()
                         ->check(CLI::IsMember({"torus", "cube", "ball"}));
     bound_options[0] = cmd->add_option("--bound", bound,
@@ -148,7 +156,7 @@ struct SampleCommand : Subcommand {
                            ->capture_default_str()
                            ->check(CLI::IsMember({"eq13", "ramp"}));
     bound_options[1] =
-        cmd->add_option("--boundary-width", config.cnj.boundary_width,
+        cmd->add_option("--boundary-spacings", config.cnj.boundary_width,
                         "The bound's transition width in lattice spacings (Eq. 13's alpha goes from 0 to 1 over it, the\n"
                         "ramp's d0), at most a quarter of the cube's side")
             ->capture_default_str()
@@ -182,13 +190,19 @@ struct SampleCommand : Subcommand {
         ->capture_default_str()
         ->check(kNonNegativeFinite);
     cmd->add_option("-m,--sets,--realizations", realizations,
-                    "M independently seeded sets (realizations; -m/--sets as in UTK): seeds s..s+M-1; the statistics\n"
-                    "add per method the mean and sd of every real statistic (rows stat = mean, sd); --points writes the M\n"
-                    "sets of a method into one file")
+                    "Realizations R: independently seeded repeats, seeds s..s+R-1 (-m/--sets M as in UTK); adds per\n"
+                    "method the mean and sd of every real statistic (rows stat = mean, sd); --points writes a\n"
+                    "method's R sets into one file")
         ->capture_default_str()
         ->check(CLI::Range(1, 100000));
     progress.add_to(*cmd);
     add_common_options(*cmd, common);
+    refuse_options(*cmd, {{"--frequency",
+                           "sample takes CNJ's noise frequency per lattice spacing as --cycles-per-spacing C (--frequency "
+                           "means cycles per unit length, as in field and reproduce table2)"},
+                          {"--boundary-width",
+                           "sample takes the bound's transition width in lattice spacings as --boundary-spacings W "
+                           "(--boundary-width is in length units, as in field)"}});
     cmd->callback([this] { run(); });
   }
 
@@ -235,7 +249,7 @@ struct SampleCommand : Subcommand {
     // Check every destination before the work starts; each file is then written whole or not at all.
     std::vector<std::pair<std::string, std::string>> outputs;
     if (!no_stats)
-      outputs.emplace_back(stats_option->count() > 0 ? "--stats" : "the statistics (default --stats -)", stats_path);
+      outputs.emplace_back(stats_option->count() > 0 ? "--output" : "the statistics (default --output -)", stats_path);
     if (!rdf_path.empty()) outputs.emplace_back("--rdf", rdf_path);
     if (!json_path.empty()) outputs.emplace_back("--json", json_path);
     if (points_dir == "-") outputs.emplace_back("--points", points_dir);
@@ -305,7 +319,13 @@ struct SampleCommand : Subcommand {
       throw std::invalid_argument("--format " + format + " applies to --points, which is not given");
     if (no_stats && points_dir.empty()) throw std::invalid_argument("--no-stats writes only point sets: give --points DIR (or -)");
     if (no_stats && (stats_option->count() > 0 || !rdf_path.empty()))
-      throw std::invalid_argument("--no-stats computes no statistics: drop --stats and --rdf");
+      throw std::invalid_argument("--no-stats computes no statistics: drop --output and --rdf");
+    // -o is the statistics CSV: a point file's name there is the old mistake of writing statistics
+    // where points were meant to go (issue 24).
+    if (stats_option->count() > 0 && looks_like_point_file(stats_path))
+      throw std::invalid_argument("-o/--output is the statistics CSV, not a point file (" +
+                                  dfvn::quote_for_message(stats_path, dfvn::kMaxPathEchoChars) +
+                                  "); write point sets with --points");
     if (realizations > 1 && !rdf_path.empty())
       throw std::invalid_argument("--rdf takes one realization; drop it or --sets");
     if (realizations > 1 && !points_dir.empty() && format == "csv")
@@ -332,6 +352,16 @@ struct SampleCommand : Subcommand {
   std::size_t method_index(dfvn::Method m) const {
     return static_cast<std::size_t>(std::find(config.methods.begin(), config.methods.end(), m) - config.methods.begin());
   }
+
+  // The extensions of point files (UTK's .pts and .bin included), matched without regard to case.
+  static bool looks_like_point_file(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    for (const char* point_extension : {".dat", ".npy", ".bin", ".txt", ".pts"})
+      if (extension == point_extension) return true;
+    return false;
+  }
+
   std::string point_file_name(dfvn::Method m) const { return std::string(dfvn::to_string(m)) + "." + format; }
   std::string point_file(dfvn::Method m) const {
     return points_dir == "-" ? points_dir : (std::filesystem::path(points_dir) / point_file_name(m)).string();

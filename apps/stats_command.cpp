@@ -60,17 +60,17 @@ struct StatsCommand : Subcommand {
     const CLI::Validator file_or_standard_input(
         [](std::string& path) { return path == kStandardInput ? std::string() : CLI::ExistingFile(path); }, "FILE|-");
     cmd->add_option("--input,inputs", inputs,
-                    "Point files, as --input FILE (repeatable) and/or positional FILE...; '-' = standard input (once;\n"
+                    "Point file to read, as --input FILE (repeatable) and/or positional FILE...; '-' = standard input (once;\n"
                     "needs --format). CSV (optional header), NPY float64/float32 (points, N) or (sets, points, N),\n"
                     "dat (whitespace-separated, '#' lines between sets) or UTK's binary .bin (one record a set)")
         ->required()
         ->check(file_or_standard_input);
     cmd->add_option("--format", format,
-                    "csv, npy, dat or bin, for every input; default: each file's extension (.txt = dat); required\n"
+                    "Point file format (of --input): csv, npy, dat or bin, for every input; default: each file's extension (.txt = dat); required\n"
                     "with '-'")
         ->check(CLI::IsMember({"csv", "npy", "dat", "bin"}));
     cmd->add_option("-d,--dim", dimension,
-                    "Dimension N of the points; every input must have it. Needed only for a .bin file that reads\n"
+                    "Dimension N of the points (1..8); every input must have it. Needed only for a .bin file that reads\n"
                     "whole in several dimensions (UTK's .bin does not store N); default: each file's own")
         ->check(CLI::Range(dfvn::kMinInputDimension, dfvn::kMaxInputDimension));
     cmd->add_option("--rdf", rdf_path,
@@ -94,13 +94,16 @@ struct StatsCommand : Subcommand {
     cmd->add_flag("--periodic", periodic,
                   "Measure on the torus [0,S)^N: minimum-image nearest-neighbour distances (opposite faces\n"
                   "identified), as for sets made periodic (dfvn-sample --domain torus, UTK's periodic samplers)");
-    output_option = cmd->add_option("-o,--output", output, "Statistics CSV ('-' = standard output)")->capture_default_str();
-    cmd->add_option("--json", json_path, "Also write the statistics as JSON ('-' = standard output)");
-    cmd->add_flag("--no-timing", no_timing, "Leave seconds_stats empty (and out of --json): identical files for identical input");
+    output_option = cmd->add_option("-o,--output", output, "Main output: the statistics CSV ('-' = standard output)")
+                        ->capture_default_str();
+    cmd->add_option("--json", json_path, "Also write the statistics as JSON: every set's values ('-' = standard output)");
+    cmd->add_flag("--no-timing", no_timing,
+                  "Leave the seconds column (seconds_stats) empty (and out of --json): identical files for identical input");
     cmd->add_option("--spectrum", spectrum_prefix,
                     "2D/3D sets: also write the power spectrum averaged over the file's sets: PREFIX.csv (k0..,power),\n"
                     "PREFIX_radial.csv (frequency,power,anisotropy_db,frequencies) and, with gnuplot, PREFIX.png");
-    cmd->add_option("--spectrum-frequency", spectrum_frequency, "Largest integer frequency K of the spectrum ([-K,K]^N)")
+    cmd->add_option("--spectrum-frequency", spectrum_frequency,
+                    "Largest integer frequency K of the spectrum ([-K,K]^N), in cycles per domain side S")
         ->capture_default_str()
         ->check(CLI::Range(1, 512));
     progress.add_to(*cmd);

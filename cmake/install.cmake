@@ -5,7 +5,7 @@
 #   lib/cmake/dfvn/                              find_package(dfvn) -> dfvn::dfvn
 #   lib/pkgconfig/dfvn.pc                        pkg-config --cflags --libs dfvn
 #   share/dfvn/                                  DFVN_DATA_DIR: the plot programs
-#   share/man/man1/dfvn-sample.1                 from --help, when help2man is found
+#   share/man/man1/dfvn-sample.1                 from --help-all (every subcommand), when help2man is found
 #   share/bash-completion/completions/dfvn-sample
 # Every path is relative to the prefix, so the tree may be installed anywhere (--prefix) and moved.
 include(CMakePackageConfigHelpers)
@@ -107,13 +107,14 @@ install(FILES ${CMAKE_CURRENT_BINARY_DIR}/dfvn.pc DESTINATION ${CMAKE_INSTALL_LI
 file(GLOB dfvn_plot_programs CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/scripts/*.gp)
 install(FILES ${dfvn_plot_programs} DESTINATION ${DFVN_DATA_DIR})
 
-# The man page, from `dfvn-sample --help` and `--version`, when help2man is there.
+# The man page, from `dfvn-sample --help-all` (the help of every subcommand, reproduce's included, each a
+# section) and `--version`, when help2man is there; without it the page is skipped with a note.
 find_program(DFVN_HELP2MAN help2man)
 if(DFVN_HELP2MAN)
   set(dfvn_man_page ${CMAKE_CURRENT_BINARY_DIR}/dfvn-sample.1)
   add_custom_command(
     OUTPUT ${dfvn_man_page}
-    COMMAND ${DFVN_HELP2MAN} --no-info --no-discard-stderr
+    COMMAND ${DFVN_HELP2MAN} --no-info --no-discard-stderr --help-option=--help-all
             "--name=divergence-free vector noise, curl-noise jittering and point-set statistics"
             --output=${dfvn_man_page} $<TARGET_FILE:dfvn-sample>
     DEPENDS dfvn-sample

@@ -31,19 +31,22 @@ _dfvn_sample() {
   # The value of an option that takes one: its {choices}, a directory, a file, or nothing to offer.
   if [[ $prev == -* ]]; then
     local line long
-    # An option may have several long names (-m,--sets,--realizations): $prev is any of them.
-    line=$(grep -E -- "^ +(-[a-zA-Z],)?(--[a-z][a-z0-9-]*,)*$prev( |=|,|$)" <<<"$help" | head -n 1)
+    # Its line: the names, comma-separated (-o,--output,--stats), then the value's type.
+    line=$(grep -E -- "^ +([-a-zA-Z0-9]+,)*$prev(,[-a-zA-Z0-9]+)*( |=|$)" <<<"$help" | head -n 1)
     long=$(grep -oE -- '--[a-z][a-z0-9-]*' <<<"$line" | head -n 1)
-    local takes_value="^ +(-[a-zA-Z],)?$long(,--[a-z][a-z0-9-]*)* (TEXT|INT|UINT|FLOAT)"
+    local takes_value="^ +[-a-zA-Z0-9,]+ (TEXT|INT|UINT|FLOAT)"
     if [[ -n $long && $line =~ $takes_value ]]; then
       if [[ $line =~ \{([^}]*)\} ]]; then
         COMPREPLY=($(compgen -W "${BASH_REMATCH[1]//,/ }" -- "$cur"))
       elif [[ $long == --methods ]]; then  # a comma list: complete the name after the last comma
-        COMPREPLY=($(compgen -P "${cur%"${cur##*,}"}" -W "cnj jitter pds sobol random halton lhs" -- "${cur##*,}"))
+        # The methods as the usage lists them (from the library's list of every method).
+        local methods
+        methods=$("$program" 2>/dev/null | sed -n 's/^  methods (--methods): //p' | tr -d ',')
+        COMPREPLY=($(compgen -P "${cur%"${cur##*,}"}" -W "$methods" -- "${cur##*,}"))
         compopt -o nospace
       elif [[ $long == @(--out|--points) ]]; then
         _filedir -d
-      elif [[ $line =~ $long(,--[a-z][a-z0-9-]*)*\ TEXT ]]; then
+      elif [[ $line =~ ^\ +[-a-zA-Z0-9,]+\ TEXT ]]; then
         _filedir
       fi
       return

@@ -148,7 +148,7 @@ void SampleConfig::validate() const {
     const double field_frequency = cnj.frequency / lattice().spacing();
     if (!(field_frequency >= kMinNoiseFrequency && field_frequency <= kMaxNoiseFrequency))
       throw std::invalid_argument(fmt::format(
-          "--frequency {:g} cycles per lattice spacing with --grid {} is a field frequency of {:g}, outside the "
+          "--cycles-per-spacing {:g} with --grid {} is a field frequency of {:g}, outside the "
           "noise's [2^-50, 2^50]",
           cnj.frequency, grid, field_frequency));
   }
@@ -426,7 +426,7 @@ std::vector<MethodResult> run_sampling(const SampleConfig& config, bool keep_poi
 std::string stats_csv_header() {
   return "dim,grid,method,points,nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,"
          "median_displacement,frac_unmoved,neighbour_disorder,lattice_order,seconds_generate,seconds_stats,seed,"
-         "protocol,domain_side,requested,frequency,field_frequency,trace_time,dropped,skipped_updates,retraced,kept_at_site,"
+         "protocol,domain_side,requested,cycles_per_spacing,field_frequency,trace_time,dropped,skipped_updates,retraced,kept_at_site,"
          "half_width,radius,saturated,notes,stat\n";
 }
 

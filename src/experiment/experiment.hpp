@@ -77,7 +77,7 @@ double estimated_peak_bytes(const SampleConfig& config);
 // Facts of how a set was made, each in the unit of the option it comes from; empty where the method
 // has no such thing.
 struct GenerationFacts {
-  std::optional<double> frequency;        // cnj: noise cycles per lattice spacing (--frequency)
+  std::optional<double> frequency;        // cnj: noise cycles per lattice spacing (--cycles-per-spacing)
   std::optional<double> field_frequency;  // cnj: the field's cycles per unit length, frequency / spacing
   std::optional<double> trace_time;       // cnj: t = step_scale * dbar(N) * spacing, length units
   std::optional<std::uint64_t> dropped;   // cnj: points that left [0,1]^N
@@ -127,7 +127,7 @@ std::vector<MethodResult> run_sampling(const SampleConfig& config, bool keep_poi
 
 // CSV text. Stats: one row per method, header dim,grid,method,points,nn_min,nn_q01,nn_median,nn_mean,
 // nn_median_scaled,rms_displacement,median_displacement,frac_unmoved,neighbour_disorder,lattice_order,
-// seconds_generate,seconds_stats,seed,protocol,domain_side,requested,frequency,field_frequency,
+// seconds_generate,seconds_stats,seed,protocol,domain_side,requested,cycles_per_spacing,field_frequency,
 // trace_time,dropped,skipped_updates,retraced,kept_at_site,half_width,radius,saturated,notes,stat (the
 // word "value": a realization; experiment/realizations.hpp adds the "mean" and "sd" rows). A column
 // that does not apply

@@ -96,14 +96,13 @@ std::string sampling_json(const SampleConfig& config, const std::vector<Sampling
                        {"integrator", to_string(config.cnj.trace.integrator)},
                        {"steps", cnj_steps(config.on == Surface::sphere ? sphere_cnj_options(config.cnj) : config.cnj)},
                        {"step_scale", config.cnj.step_scale},
-                       {"frequency", config.cnj.frequency},
-                       {"frequency_unit", "cycles per lattice spacing"},
+                       {"cycles_per_spacing", config.cnj.frequency},
                        {"reprojection", to_string(config.cnj.trace.reprojection)},
                        {"reproject_iterations", config.cnj.trace.reproject_iterations},
                        {"domain", to_string(config.cnj.domain)},
                        {"domain_mode", to_string(config.cnj.domain_mode)},
                        {"bound", to_string(config.cnj.bound)},
-                       {"boundary_width", config.cnj.boundary_width}};
+                       {"boundary_spacings", config.cnj.boundary_width}};
   parameters["periodic_statistics"] = config.periodic_statistics;
   // null: the protocol's radius, which each pds result gives under "generation".
   parameters["pds"] = {{"radius", config.pds_radius > 0.0 ? ordered_json(config.pds_radius) : ordered_json(nullptr)},
@@ -126,7 +125,7 @@ std::string sampling_json(const SampleConfig& config, const std::vector<Sampling
       entry["displacement"] = r.displacement ? displacement_json(*r.displacement) : ordered_json(nullptr);
       ordered_json generation = ordered_json::object();
       const GenerationFacts& f = r.facts;
-      put_if(generation, "frequency", f.frequency);
+      put_if(generation, "cycles_per_spacing", f.frequency);
       put_if(generation, "field_frequency", f.field_frequency);
       put_if(generation, "trace_time", f.trace_time);
       put_if(generation, "dropped", f.dropped);

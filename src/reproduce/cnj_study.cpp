@@ -38,21 +38,21 @@ StudyLattice parse_study_lattice(std::string_view name) {
 void CnjStudyConfig::validate() const {
   if (dimensions.empty()) throw std::invalid_argument("--dims must name at least one dimension");
   for (int d : dimensions) study_grid(lattice, d);
-  if (seeds < 1 || seeds > 1000) throw std::invalid_argument(fmt::format("--seeds must be in 1..1000, got {}", seeds));
-  check_seed_range(seed, static_cast<std::uint64_t>(seeds), "--seed", "--seeds");
+  if (seeds < 1 || seeds > 1000) throw std::invalid_argument(fmt::format("--realizations must be in 1..1000, got {}", seeds));
+  check_seed_range(seed, static_cast<std::uint64_t>(seeds), "--seed", "--realizations");
   if (bases.empty() || frequencies.empty() || step_scales.empty() || steps.empty())
     throw std::invalid_argument("the study needs at least one basis, frequency, step scale and step count");
   // Each value as CNJ would check it, but named by the option that gave it (CNJ's own message names
   // neither the list nor the dimension).
   for (double f : frequencies) {
     if (!std::isfinite(f) || !(f > 0.0))
-      throw std::invalid_argument(fmt::format("--frequencies must be finite and positive, got {:g}", f));
+      throw std::invalid_argument(fmt::format("--cycles-per-spacing must be finite and positive, got {:g}", f));
     for (int d : dimensions) {
       const LatticeSpec spec{d, study_grid(lattice, d), lattice == StudyLattice::paper ? Protocol::paper : Protocol::unit};
       const double field_frequency = f / spec.spacing();
       if (!(field_frequency >= kMinNoiseFrequency && field_frequency <= kMaxNoiseFrequency))
         throw std::invalid_argument(fmt::format(
-            "--frequencies {:g} cycles per lattice spacing is a field frequency of {:g} in {}D (K = {}), outside the "
+            "--cycles-per-spacing {:g} is a field frequency of {:g} cycles per unit length in {}D (K = {}), outside the "
             "noise's [2^-50, 2^50]",
             f, field_frequency, d, spec.grid));
     }
@@ -68,7 +68,7 @@ void CnjStudyConfig::validate() const {
   if (const auto b = first_repeat(bases))
     throw std::invalid_argument(fmt::format("--noises names {} twice", to_string(*b)));
   if (const auto f = first_repeat(frequencies))
-    throw std::invalid_argument(fmt::format("--frequencies names {:g} twice", *f));
+    throw std::invalid_argument(fmt::format("--cycles-per-spacing names {:g} twice", *f));
   if (const auto c = first_repeat(step_scales))
     throw std::invalid_argument(fmt::format("--step-scales names {:g} twice", *c));
   if (const auto m = first_repeat(steps)) throw std::invalid_argument(fmt::format("--steps names {} twice", *m));
@@ -535,7 +535,7 @@ std::vector<std::string> cnj_study_output_files() {
 std::string write_cnj_study(const CnjStudyResult& result, const Log& log) {
   const std::filesystem::path dir = result.config.out_dir;
   std::string rows =
-      "dim,grid,noise,frequency,step_scale,seed,rms_displacement,median_over_rms,frac_unmoved,neighbour_disorder,"
+      "dim,grid,noise,cycles_per_spacing,step_scale,seed,rms_displacement,median_over_rms,frac_unmoved,neighbour_disorder,"
       "lattice_order,skipped_update_fraction,cnj_nn_min,cnj_nn_q01,h_rms,jitter_rms_nn_min,jitter_rms_nn_q01,"
       "h_disorder,jitter_disorder_nn_min,jitter_disorder_nn_q01,h_order,jitter_order_nn_min,jitter_order_nn_q01,dropped_fraction,steps\n";
   for (const CnjStudyRow& r : result.rows)

@@ -29,7 +29,7 @@ struct CnjStudyConfig {
   StudyLattice lattice = StudyLattice::interior;
   std::vector<int> dimensions = {3, 4, 5, 6, 7};
   std::uint64_t seed = 1;  // seeds seed .. seed + seeds - 1
-  int seeds = 3;
+  int seeds = 3;  // --realizations
   std::vector<NoiseBasis> bases = {NoiseBasis::simplex, NoiseBasis::turning_bands};
   std::vector<double> frequencies = {0.1, 0.2, 0.35, 0.5, 1.0};  // cycles per lattice spacing
   std::vector<double> step_scales = {0.2, 0.35, 0.5};           // t = C dbar(N) spacing

@@ -44,10 +44,10 @@ struct CnjOptions {
   static constexpr int kMaxSteps = 1 << 20;
   // Trace time t = step_scale * dbar(N) * spacing (Section 5.1: proportional to the average
   // neighbour distance). |c| has RMS 1, so t is also the RMS length of a one-step move.
-  // Noise frequency in cycles per lattice spacing (FieldOptions::frequency): the field's frequency is
-  // frequency / spacing.
+  // Noise frequency in cycles per lattice spacing (the command line's --cycles-per-spacing; not
+  // FieldOptions::frequency, which is per unit length): the field's frequency is frequency / spacing.
   // Defaults: the choice of choose_cnj_defaults (reproduce/cnj_study.hpp) on `reproduce cnj-study
-  // --seeds 5`, recorded in data/cnj_defaults.md.
+  // --realizations 5`, recorded in data/cnj_defaults.md.
   NoiseBasis noise = kDefaultNoiseBasis;
   double step_scale = 0.5;
   double frequency = 0.2;
@@ -58,7 +58,7 @@ struct CnjOptions {
   CnjDomain domain = kDefaultCnjDomain;
   DomainMode domain_mode = DomainMode::conformant;
   Bound bound = Bound::eq13;  // conformant cube and ball: how f_1 meets the boundary (field/constraint.hpp)
-  // Eq. (13)'s transition width w in lattice spacings: alpha goes from 0 on the boundary to 1 at w,
+  // Eq. (13)'s transition width w in lattice spacings (--boundary-spacings): alpha goes from 0 on the boundary to 1 at w,
   // capped at 1/4 (field/constraint.hpp). Half a spacing, so that the unit protocol's outermost layer
   // starts where alpha reaches 1: wider over-fills the boundary layer, narrower retraces more traces
   // (data/boundary_width.md holds the measurements).

@@ -72,7 +72,7 @@ expect_message "sample method" "unknown method 'bogus'"
 expect_error "sample duplicate method" "" "" --dim 3 --grid 4 --methods cnj,cnj
 expect_error "sample step scale" "" "" --dim 3 --grid 4 --step-scale 0
 expect_error "sample step scale nan" "" "" --dim 3 --grid 4 --step-scale nan
-expect_error "sample frequency" "" "" --dim 3 --grid 4 --frequency -1
+expect_error "sample frequency" "" "" --dim 3 --grid 4 --cycles-per-spacing -1
 expect_error "sample reproject" "" "" --dim 3 --grid 4 --reproject bogus
 expect_error "sample protocol" "" "" --dim 3 --grid 4 --protocol bogus
 expect_error "sample pds radius" "" "" --dim 3 --grid 4 --pds-radius -0.1
@@ -123,7 +123,7 @@ expect_error "torus bound" "" "--bound applies to conformant CNJ" --dim 3 --grid
 "$bin" --dim 3 --grid 4 --methods cnj --domain-mode drop -q | grep -q "cube domain; drop" &&
   "$bin" --dim 3 --grid 4 --methods cnj --bound ramp -q | grep -q "cube domain; conformant" && ok ||
   bad "--domain-mode drop or --bound without --domain: the cube"
-expect_error "drop boundary width" "" "--boundary-width applies" --dim 3 --grid 4 --domain cube --domain-mode drop --boundary-width 1
+expect_error "drop boundary width" "" "--boundary-spacings applies" --dim 3 --grid 4 --domain cube --domain-mode drop --boundary-spacings 1
 expect_error "torus simplex" "" "periodic noise basis" --dim 3 --grid 4 --noise simplex
 expect_error "jitter-matched ball" "" "jitter-matched" --dim 3 --grid 4 --domain ball --methods cnj,jitter-matched
 expect_error "field bound without a boundary" "" "--bound applies to --domain cube or ball" field --dim 3 --bound ramp

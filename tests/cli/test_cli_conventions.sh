@@ -20,7 +20,7 @@ done
   grep -q "stats" "$work/help" && ok || bad "--help: $(cat "$work/help")"
 "$bin" --help-all >"$work/help_all" 2>&1 && grep -q -- "--step-scale" "$work/help_all" && grep -q -- "--diagnose" "$work/help_all" &&
   ok || bad "--help-all: $(head -3 "$work/help_all")"
-"$bin" sample -h >"$work/out" 2>&1 && grep -q -- "-n,--count" "$work/out" && grep -q -- "-o,--stats" "$work/out" &&
+"$bin" sample -h >"$work/out" 2>&1 && grep -q -- "-n,--count" "$work/out" && grep -q -- "-o,--output,--stats" "$work/out" &&
   grep -q -- "-q,--quiet" "$work/out" && grep -q -- "--progress" "$work/out" && grep -q -- "-d,--dim" "$work/out" &&
   grep -q -- "-s,--seed" "$work/out" && ok || bad "sample -h lacks a short option"
 "$bin" --version | grep -q "^dfvn-sample [0-9]" && ok || bad "--version"
@@ -53,17 +53,17 @@ grep -q "warning: -n 1200: the lattice methods use K = 11, 11^3 = 1331" "$work/e
   grep -q "warning: pds saturated at [0-9]* of 5000 points" "$work/err" && ok || bad "no PDS saturation report: $(cat "$work/err")"
 
 # Numbers in their own columns, in the user's units; notes keep words.
-"$bin" -d 3 --grid 6 -q --methods cnj,pds --frequency 0.5 --no-timing -o "$work/cols.csv" 2>"$work/err" && ok || bad "cols run"
+"$bin" -d 3 --grid 6 -q --methods cnj,pds --cycles-per-spacing 0.5 --no-timing -o "$work/cols.csv" 2>"$work/err" && ok || bad "cols run"
 $python - "$work/cols.csv" <<'PY' && ok || bad "stats columns"
 import csv, sys
 rows = {r["method"]: r for r in csv.DictReader(open(sys.argv[1]))}
 cnj, pds = rows["cnj"], rows["pds"]
-assert cnj["frequency"] == "0.5", cnj["frequency"]
+assert cnj["cycles_per_spacing"] == "0.5", cnj["cycles_per_spacing"]
 # On the torus: the cell-centred lattice (spacing 1/6), and the frequency its periodic field realises.
 assert abs(float(cnj["field_frequency"]) / (0.5 * 6) - 1) < 0.1, cnj["field_frequency"]
 assert cnj["notes"] == "turning-bands noise; torus domain; conformant", cnj["notes"]
 assert cnj["dropped"].isdigit() and cnj["skipped_updates"].isdigit() and float(cnj["trace_time"]) > 0
-assert pds["frequency"] == "" and pds["dropped"] == "" and pds["saturated"] in ("0", "1") and pds["radius"] == "0.1"
+assert pds["cycles_per_spacing"] == "" and pds["dropped"] == "" and pds["saturated"] in ("0", "1") and pds["radius"] == "0.1"
 assert pds["rms_displacement"] == "" and cnj["rms_displacement"] != ""
 for r in rows.values():
     assert "=" not in r["notes"], r["notes"]
@@ -89,7 +89,7 @@ run = json.load(open(sys.argv[1]))
 rows = {r["method"]: r for r in csv.DictReader(open(sys.argv[2]))}
 p = run["parameters"]
 assert p["dim"] == 3 and p["grid"] == 6 and p["seed"] == 3 and p["methods"] == ["cnj", "jitter", "pds", "sobol"], p
-assert p["cnj"]["noise"] == "turning-bands" and p["cnj"]["frequency"] == 0.2 and p["count"] is None
+assert p["cnj"]["noise"] == "turning-bands" and p["cnj"]["cycles_per_spacing"] == 0.2 and p["count"] is None
 results = {r["method"]: r for r in run["results"]}
 assert set(results) == set(rows)
 for m, r in results.items():

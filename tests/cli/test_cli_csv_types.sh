@@ -53,7 +53,7 @@ run diagnose2 field --diagnose --diagnose-points 2000 --dim 4 --frequency 0.5 --
 # reproduce: every subcommand, small.
 run table1 reproduce table1 --dims 3 --realizations 2 --out r1 -q
 run table2 reproduce table2 --width 32 --height 18 --second-width 16 --out r2 -q
-run cnj_study reproduce cnj-study --dims 3 --seeds 2 --frequencies 0.5,1 --step-scales 0.5 --steps 1 --out r3 -q
+run cnj_study reproduce cnj-study --dims 3 --realizations 2 --cycles-per-spacing 0.5,1 --step-scales 0.5 --steps 1 --out r3 -q
 run integration reproduce integration --dims 3 --realizations 2 --max-points 512 --methods jitter,random,pds --out r4 -q
 
 mv realizations.stdout realizations.csv  # the statistics went to standard output

@@ -26,9 +26,9 @@ expect_error "field frequency 1e308" "0.1,0.2\n" "" field --dim 2 --frequency 1e
 expect_message "field frequency 1e308" "--frequency.*1e308"
 expect_error "field subnormal frequency" "0.1,0.2\n" "" field --dim 2 --frequency 1e-320
 expect_message "field subnormal frequency" "--frequency.*2\^-50"
-expect_error "cnj frequency 1e307" "" "" --dim 3 --grid 4 --methods cnj --frequency 1e307
-expect_error "cnj subnormal frequency" "" "" --dim 3 --grid 4 --methods cnj --frequency 1e-320
-expect_error "cnj field frequency over the bound" "" "" --dim 3 --grid 4 --methods cnj --frequency 1e15
+expect_error "cnj frequency 1e307" "" "" --dim 3 --grid 4 --methods cnj --cycles-per-spacing 1e307
+expect_error "cnj subnormal frequency" "" "" --dim 3 --grid 4 --methods cnj --cycles-per-spacing 1e-320
+expect_error "cnj field frequency over the bound" "" "" --dim 3 --grid 4 --methods cnj --cycles-per-spacing 1e15
 expect_message "cnj field frequency over the bound" "field frequency"
 expect_error "table2 frequency 1e308" "" "" reproduce table2 --frequency 1e308 --out "$work/t2bad"
 expect_error "table2 frequency over the image height" "" "" reproduce table2 --frequency 1e15 --width 2 --height 20000 --out "$work/t2bad"
@@ -61,9 +61,9 @@ for n in 2 5 8; do
   # The free field (--domain-mode drop): in the conformant field the noise's values grow like
   # 1/frequency, and Eq. 13's (f~ - G d) grad alpha term then throws boundary points out, so nearly every
   # point is retraced 6 times and kept at its site (finite, but minutes in 8D under ASan; see the notes).
-  "$bin" --dim "$n" --grid 4 --methods cnj --frequency 1e-13 --step-scale 1e-6 --domain-mode drop --quiet \
+  "$bin" --dim "$n" --grid 4 --methods cnj --cycles-per-spacing 1e-13 --step-scale 1e-6 --domain-mode drop --quiet \
     --stats "$work/stats-low$n.csv" 2>"$work/err" && ok || bad "low frequency sample ${n}D: $(cat "$work/err")"
-  "$bin" --dim "$n" --grid 4 --methods cnj --frequency 1e14 --domain-mode drop --quiet --stats "$work/stats-high$n.csv" 2>"$work/err" &&
+  "$bin" --dim "$n" --grid 4 --methods cnj --cycles-per-spacing 1e14 --domain-mode drop --quiet --stats "$work/stats-high$n.csv" 2>"$work/err" &&
     ok || bad "high frequency sample ${n}D: $(cat "$work/err")"
   expect_finite "sample ${n}D" "$work/rdf-far$n.csv" "$work/stats-far$n.csv" "$work/stats-low$n.csv" "$work/stats-high$n.csv"
 done
@@ -166,7 +166,7 @@ expect_no_temporaries "after the output tests" "$work/targets"
 
 # Two outputs of one run on one path are refused, whatever the spelling.
 expect_error "same --rdf and --stats" "" "" --dim 3 --grid 4 --methods jitter --rdf x.csv --stats x.csv
-expect_message "same --rdf and --stats" "--stats and --rdf"
+expect_message "same --rdf and --stats" "--output and --rdf"
 expect_error "same path spelled twice" "" "" --dim 3 --grid 4 --methods jitter --rdf ./x.csv --stats "$work/targets/x.csv"
 expect_error "--stats through a link to --rdf" "" "" --dim 3 --grid 4 --methods jitter --rdf target.csv --stats link2.csv
 ln target.csv hard.csv

@@ -57,7 +57,7 @@ run stats_spectrum stats --input count_points/sobol.npy --spectrum spectrum --sp
 # reproduce: every subcommand, small.
 run table1 reproduce table1 --dims 3 --realizations 2 --out r1 -q
 run table2 reproduce table2 --width 32 --height 18 --second-width 16 --out r2 -q
-run cnj_study reproduce cnj-study --dims 3 --seeds 1 --frequencies 0.5 --step-scales 0.5 --steps 1 --out r3 -q
+run cnj_study reproduce cnj-study --dims 3 --realizations 1 --cycles-per-spacing 0.5 --step-scales 0.5 --steps 1 --out r3 -q
 run integration reproduce integration --dims 3 --realizations 2 --max-points 512 --methods jitter,random --out r4 -q
 
 # Times are the only bytes allowed to differ: blanked (normalise_times.py says how), in the recording

@@ -116,7 +116,7 @@ expect_error "sample seeds wrap" "" "--seed 18446744073709551614 with --realizat
   -d 2 --grid 4 --methods jitter --seed 18446744073709551614 --realizations 3
 expect_error "table1 seeds wrap" "" "with --realizations 3 $wrap" reproduce table1 --dims 3 --seed 18446744073709551614 --realizations 3 --out r1
 expect_error "integration seeds wrap" "" "with --realizations 3 $wrap" reproduce integration --dims 3 --seed 18446744073709551614 --realizations 3 --out ri
-expect_error "cnj-study seeds wrap" "" "with --seeds 3 $wrap" reproduce cnj-study --dims 3 --seed 18446744073709551614 --seeds 3 --out rc
+expect_error "cnj-study seeds wrap" "" "with --realizations 3 $wrap" reproduce cnj-study --dims 3 --seed 18446744073709551614 --realizations 3 --out rc
 [[ ! -e r1 && ! -e ri && ! -e rc ]] && ok || bad "a refused reproduction made its folder"
 "$bin" -d 2 --grid 4 --methods jitter --seed 18446744073709551613 --realizations 3 -q --no-timing >seeds.csv 2>err &&
   grep -q ',18446744073709551615,' seeds.csv && ok || bad "the last seed 2^64 - 1: $(cat err)"
@@ -156,8 +156,8 @@ expect_error "dat ++0.5" "" "signs2.dat, line 1, column 1: '\+\+0.5' is not a nu
 
 # ---------------------------------------------------------------------------------------------------
 # Messages name the option the user gave.
-expect_error "cnj-study frequency" "" "--frequencies 1e\+14 cycles per lattice spacing is a field frequency of 1.2e\+15 in 3D" \
-  reproduce cnj-study --dims 3 --frequencies 1e14 --out rc
+expect_error "cnj-study frequency" "" "--cycles-per-spacing 1e\+14 is a field frequency of 1.2e\+15 cycles per unit length in 3D" \
+  reproduce cnj-study --dims 3 --cycles-per-spacing 1e14 --out rc
 expect_error "-n beyond memory" "" "-n 1099511627776 in 3D gives 1099511627776 points, which need about" \
   -d 3 -n 1099511627776 --methods random
 ! grep -q -- "--grid" err && ok || bad "-n mentions --grid: $(cat err)"

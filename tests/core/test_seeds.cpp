@@ -27,8 +27,8 @@ TEST(SeedRange, TheLastSeedMayBeTwoToTheSixtyFourMinusOneNotMore) {
                  "--seed 18446744073709551614 with --realizations 3 needs seeds up to 18446744073709551614 + 2, past "
                  "2^64 - 1 = 18446744073709551615; give --seed at most 18446744073709551613");
   }
-  EXPECT_NO_THROW(check_seed_range(1, kLargest, "--seed", "--seeds"));  // seeds 1 .. 2^64 - 1
-  EXPECT_THROW(check_seed_range(2, kLargest, "--seed", "--seeds"), std::invalid_argument);
+  EXPECT_NO_THROW(check_seed_range(1, kLargest, "--seed", "--realizations"));  // seeds 1 .. 2^64 - 1
+  EXPECT_THROW(check_seed_range(2, kLargest, "--seed", "--realizations"), std::invalid_argument);
 }
 
 // Every configuration that runs seeds s..s+R-1 refuses a range that wraps, naming its options.
@@ -54,7 +54,7 @@ TEST(SeedRange, EveryRepeatedRunChecksItsSeeds) {
   CnjStudyConfig study;
   study.seed = kLargest - 1;
   study.seeds = 3;
-  EXPECT_NE(message(study).find("with --seeds 3"), std::string::npos) << message(study);
+  EXPECT_NE(message(study).find("with --realizations 3"), std::string::npos) << message(study);
 }
 
 }  // namespace

@@ -192,7 +192,7 @@ TEST(Experiment, StatsColumnsAreNumbersOrEmpty) {
   const auto column = [&](const std::string& name) {
     return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
   };
-  for (const char* name : {"nn_q01", "rms_displacement", "frequency", "field_frequency", "trace_time", "dropped",
+  for (const char* name : {"nn_q01", "rms_displacement", "cycles_per_spacing", "field_frequency", "trace_time", "dropped",
                                   "skipped_updates", "retraced", "kept_at_site", "radius", "saturated", "notes"})
     ASSERT_LT(column(name), header.size()) << name;
   const auto results = run_sampling(c, false);
@@ -200,7 +200,7 @@ TEST(Experiment, StatsColumnsAreNumbersOrEmpty) {
   const std::vector<std::string> pds = split_row(stats_csv_row(c, results[1], false));
   const std::vector<std::string> sobol = split_row(stats_csv_row(c, results[2], false));
   ASSERT_EQ(cnj.size(), header.size());
-  EXPECT_EQ(cnj[column("frequency")], "0.5");  // as given, in cycles per lattice spacing
+  EXPECT_EQ(cnj[column("cycles_per_spacing")], "0.5");  // as given, in cycles per lattice spacing
   // On the torus (the default) the lattice is cell-centred (spacing 1/6 here) and the field frequency the one
   // the periodic basis realises: near 0.5 / spacing = 3 cycles per unit length.
   EXPECT_NEAR(std::stod(cnj[column("field_frequency")]), 0.5 * 6.0, 0.3);
@@ -212,7 +212,7 @@ TEST(Experiment, StatsColumnsAreNumbersOrEmpty) {
   EXPECT_EQ(cnj[column("domain_side")], "1.0");  // a real, even when whole
   EXPECT_FALSE(pds[column("radius")].empty());
   EXPECT_TRUE(pds[column("saturated")] == "0" || pds[column("saturated")] == "1");
-  for (const char* name : {"frequency", "trace_time", "dropped", "radius", "saturated", "rms_displacement"})
+  for (const char* name : {"cycles_per_spacing", "trace_time", "dropped", "radius", "saturated", "rms_displacement"})
     EXPECT_EQ(sobol[column(name)], "") << name;
   EXPECT_EQ(sobol[column("domain_side")], "0.6");
   EXPECT_EQ(sobol[column("stat")], "value");  // a realization's row (summary rows: mean, sd)

@@ -46,6 +46,15 @@ line_shown="dfvn-sample stats --format b"; expect "stats --format b" bin
 line_shown="dfvn-sample stats --r"; expect "stats --r" --rdf --rdf-bins
 got=$(complete_line "sample --sets ")
 [[ -z ${got// /} ]] || fail "a number option (--sets) offered '$got'"
+line_shown="dfvn-sample --methods cnj,j"; expect "--methods cnj,j" cnj,jitter cnj,jitter-matched
+line_shown="dfvn-sample reproduce t"; expect "reproduce " table1 table2 cnj-study integration
+line_shown="dfvn-sample reproduce cnj-study --r"; expect "reproduce cnj-study --r" --realizations
+line_shown="dfvn-sample --c"; expect "--c" --count --cycles-per-spacing
+# The main output's three names, each followed by a file name.
+for name in -o --output --stats; do
+  got=$(cd "$(dirname "$DFVN_SAMPLE")" && complete_line "$name dfvn-sam")
+  [[ $got == *dfvn-sample* ]] || fail "$name offered '$got', not a file"
+done
 got=$(complete_line "field --dim ")
 [[ -z ${got// /} ]] || fail "a number option (--dim) offered '$got'"
 echo "ok: subcommands, options and their values complete"

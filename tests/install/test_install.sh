@@ -52,6 +52,14 @@ if [[ $DFVN_MAN_PAGE == 1 ]]; then
   [[ -e $man_page ]] || fail "help2man is there but the man page is not installed"
   grep -q '^\.TH DFVN-SAMPLE "1"' "$man_page" || fail "the man page has no .TH DFVN-SAMPLE header"
   grep -q 'dim' "$man_page" || fail "the man page does not show the options of --help"
+  # Made from --help-all: a section per subcommand, reproduce's included, with their options.
+  for section in sample field stats reproduce "reproduce table1" "reproduce table2" "reproduce cnj-study" \
+    "reproduce integration"; do
+    grep -q "^\.SS \"dfvn-sample $section:\"" "$man_page" || fail "the man page has no section for $section"
+  done
+  for option in 'cycles\\-per\\-spacing' 'second\\-width' 'max\\-points' 'diagnose\\-points' 'spectrum\\-frequency'; do
+    grep -q -- "$option" "$man_page" || fail "the man page does not show --${option//\\\\/}"
+  done
   echo "ok: the man page"
 fi
 

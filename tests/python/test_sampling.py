@@ -22,7 +22,7 @@ def test_sample_equals_the_cli_points_bit_for_bit(cli, tmp_path, protocol):
 
 def test_sample_options_reach_the_generator_as_on_the_command_line(cli, tmp_path):
     cli("--dim", 4, "--grid", 4, "--seed", 8, "--protocol", "unit", "--methods", "cnj,sobol,halton,pds",
-        "--scramble", "none", "--noise", "quintic-gradient", "--frequency", 0.35, "--step-scale", 0.3,
+        "--scramble", "none", "--noise", "quintic-gradient", "--cycles-per-spacing", 0.35, "--step-scale", 0.3,
         "--integrator", "euler", "--reproject", "newton", "--steps", 3, "--pds-radius", 0.2, "--pds-candidates", 10,
         "--domain", "ball", "--bound", "ramp",
         "--points", tmp_path, "--format", "npy", "--stats", tmp_path / "stats.csv", "--quiet")

@@ -240,7 +240,7 @@ TEST(CnjStudy, StudiesStepCountsAsCells) {
       << md;
 }
 
-// Issue 23: a frequency that CNJ refuses was reported without naming --frequencies (or the dimension).
+// Issue 23: a frequency that CNJ refuses was reported without naming its list (today --cycles-per-spacing) or the dimension.
 TEST(CnjStudy, ValuesOutsideCnjsRangeAreRefusedNamingTheirList) {
   const auto message = [](const CnjStudyConfig& config) -> std::string {
     try {
@@ -254,10 +254,10 @@ TEST(CnjStudy, ValuesOutsideCnjsRangeAreRefusedNamingTheirList) {
   config.dimensions = {3};
   config.frequencies = {0.2, 1e14};
   EXPECT_EQ(message(config),
-            "--frequencies 1e+14 cycles per lattice spacing is a field frequency of 1.2e+15 in 3D (K = 12), outside the "
-            "noise's [2^-50, 2^50]");
+            "--cycles-per-spacing 1e+14 is a field frequency of 1.2e+15 cycles per unit length in 3D (K = 12), outside "
+            "the noise's [2^-50, 2^50]");
   config.frequencies = {1e-20};
-  EXPECT_NE(message(config).find("--frequencies 1e-20"), std::string::npos);
+  EXPECT_NE(message(config).find("--cycles-per-spacing 1e-20"), std::string::npos);
   config.frequencies = {0.2};
   config.step_scales = {1e30};
   EXPECT_EQ(message(config), "--step-scales must be in (0, 2^20], got 1e+30");

@@ -1,0 +1,225 @@
+#!/usr/bin/env python3
+"""Issue 24's one vocabulary: every option name means one thing across subcommands.
+
+Reads `dfvn-sample --help-all`, finds every option name that more than one subcommand takes and
+checks that each of its descriptions states the meaning and unit the table SHARED gives (phrases
+compared lowercased, whitespace collapsed). A name newly shared without an entry here fails, as does
+a description that departs from its entry. Also: --help-all holds every subcommand, reproduce's
+included; `reproduce --help` lists its subcommands; the usage and every --methods description list
+every method of src/sampling/method.hpp's kAllMethods; the old spellings are refused with a line
+naming the new one.
+
+    DFVN_SAMPLE=build/dfvn-sample DFVN_SOURCE_DIR=. tests/cli/test_cli_vocabulary.py
+"""
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+BIN = os.environ["DFVN_SAMPLE"]
+SOURCE = os.environ.get("DFVN_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+
+# name -> the phrases every description of it must hold (README's table "Options that mean the same
+# everywhere" says the same in words). Names taken by one subcommand today but meant to be shared are
+# listed too, so that they keep one meaning when a second subcommand takes them.
+SHARED = {
+    "--help": ["print this help message"],
+    "--help-all": ["print the help of every subcommand"],
+    "--dim": ["dimension n"],
+    "--seed": ["seed of every random choice; same seed, same output"],
+    "--threads": ["worker threads: 0 = all cores", "output never depends on it"],
+    "--progress": ["progress on stderr"],
+    "--quiet": ["no progress on stderr"],
+    "--output": ["main output:", "('-' = standard output)"],
+    "--out": ["output directory"],
+    "--input": ["point file to read"],
+    "--format": ["point file format", "csv", "npy", "dat"],
+    "--json": ["also write the", "as json", "('-' = standard output)"],
+    "--no-timing": ["leave the seconds column", "empty"],
+    "--knn": ["kd-tree backend: nanoflann or flann"],
+    "--periodic": ["on the torus", "minimum-image nearest-neighbour distances"],
+    "--realizations": ["realizations r", "independently seeded repeats, seeds s..s+r-1"],
+    "--dims": ["dimensions: a range or list within 3..7"],
+    "--methods": ["comma list of methods"],
+    "--noise": ["noise basis"],
+    "--frequency": ["cycles per unit length"],
+    "--cycles-per-spacing": ["cycles per lattice spacing"],
+    "--steps": ["cnj integration steps m"],
+    "--domain": ["torus ([0,1)^n", "cube ([0,1]^n)", "ball (its inscribed ball"],
+    "--bound": ["eq13 (the paper's eq. 13) or ramp (bridson et al. 2007"],
+    "--boundary-width": ["transition width in length units"],
+    "--boundary-spacings": ["transition width in lattice spacings"],
+    "--rdf": ["radial distribution function"],
+    "--rdf-max": ["largest r of the rdf"],
+    "--rdf-bins": ["rdf bins"],
+    "--rdf-queries": ["rdf query points"],
+    "--domain-side": ["[0, s]^n"],
+}
+# Names whose meaning moved: given, each is refused with a line naming the option to use instead.
+REFUSED = [
+    (["--dim", "3", "--grid", "4", "--frequency", "0.2"], "--cycles-per-spacing"),
+    (["sample", "--dim", "3", "--frequency"], "--cycles-per-spacing"),
+    (["--dim", "3", "--grid", "4", "--domain", "cube", "--boundary-width", "1"], "--boundary-spacings"),
+    (["reproduce", "cnj-study", "--dims", "3", "--seeds", "2"], "--realizations"),
+    (["reproduce", "cnj-study", "--dims", "3", "--frequencies", "0.2,0.5"], "--cycles-per-spacing"),
+    (["-d", "2", "-n", "64", "-o", "pts.dat"], "--points"),
+    (["-d", "2", "-n", "64", "--stats", "pts.NPY"], "--points"),
+]
+
+failures = []
+
+
+def check(ok, what):
+    print(("ok   " if ok else "FAIL ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def run(*args, cwd=None):
+    return subprocess.run([BIN, *args], capture_output=True, text=True, cwd=cwd)
+
+
+def normalise(text):
+    return re.sub(r"\s+", " ", text).strip().lower()
+
+
+def sections(help_all):
+    """{'dfvn-sample sample': text, ...}: the subcommand sections of --help-all."""
+    parts = re.split(r"^(dfvn-sample(?: [a-z0-9-]+)+):$", help_all, flags=re.M)
+    return {parts[i]: parts[i + 1] for i in range(1, len(parts) - 1, 2)}
+
+
+def options(section):
+    """{long name: (type, description)} of one section's option list (CLI11's layout: the names at
+    column 4, the description from column 32, continuation lines indented to it)."""
+    found, current = {}, None
+    for line in section.split("\n"):
+        head = re.match(r"^    (-[^ ]+)(?: ([A-Z0-9]+)\S*)?(.*)$", line)
+        if head:
+            names = head.group(1).split(",")
+            current = [n for n in names if n.startswith("--")]
+            description = line[32:] if len(line) > 32 and line[31] == " " and line[32] != " " else ""
+            for n in current:
+                found[n] = (head.group(2) or "FLAG", description)
+        elif current and line.startswith(" " * 32) and line.strip():
+            for n in current:
+                found[n] = (found[n][0], found[n][1] + " " + line.strip())
+        else:
+            current = None
+    return found
+
+
+def kall_methods():
+    text = open(os.path.join(SOURCE, "src", "sampling", "method.hpp")).read()
+    body = re.search(r"kAllMethods\[\]\s*=\s*\{([^}]*)\}", text).group(1)
+    return [name.replace("_", "-") for name in re.findall(r"Method::(\w+)", body)]
+
+
+help_all = run("--help-all")
+check(help_all.returncode == 0, "--help-all exits 0")
+parts = sections(help_all.stdout)
+expected = ["dfvn-sample " + s for s in ["sample", "field", "reproduce", "reproduce table1", "reproduce table2",
+                                          "reproduce cnj-study", "reproduce integration", "stats"]]
+check(sorted(parts) == sorted(expected), f"--help-all has a section per subcommand: {sorted(parts)}")
+
+per_section = {name: options(text) for name, text in parts.items()}
+check(all(len(o) >= 5 or s == "dfvn-sample reproduce" for s, o in per_section.items()), "every section lists its options: "
+      + ", ".join(f"{k} {len(v)}" for k, v in per_section.items()))
+
+
+def takers_of(per_section):
+    """{name: [(section, value type, description), ...]} over every section."""
+    takers = {}
+    for section, opts in per_section.items():
+        for name, (kind, description) in opts.items():
+            takers.setdefault(name, []).append((section, kind, description))
+    return takers
+
+
+def vocabulary_problems(per_section):
+    """Each departure from SHARED, as a line: a shared name without an entry, a description without its
+    entry's phrases, two value types under one name."""
+    problems = []
+    for name, uses in sorted(takers_of(per_section).items()):
+        if len(uses) < 2:
+            continue
+        where = ", ".join(s.replace("dfvn-sample ", "") for s, _, _ in uses)
+        if name not in SHARED:
+            problems.append(f"{name} ({where}) is shared but has no entry in SHARED (and README's table)")
+            continue
+        for section, kind, description in uses:
+            missing = [p for p in SHARED[name] if p not in normalise(description)]
+            if missing:
+                problems.append(f"{name} in {section}: missing {missing} in {normalise(description)!r}")
+        kinds = sorted({kind for _, kind, _ in uses})
+        if len(kinds) != 1:
+            problems.append(f"{name}: value types {kinds} across {where}")
+    return problems
+
+
+takers = takers_of(per_section)
+shared = sorted(name for name, uses in takers.items() if len(uses) > 1)
+check(len(shared) >= 15, f"{len(shared)} names are shared: {' '.join(shared)}")
+problems = vocabulary_problems(per_section)
+check(not problems, "every shared name states its one meaning and unit" + "".join("\n     " + p for p in problems))
+
+# The check itself fails on the departures it is there for: a shared name's unit changed in one
+# subcommand, a name newly shared without an entry, a second value type.
+for what, mutate in [
+    ("table2's --frequency per image width", lambda ps: ps["dfvn-sample reproduce table2"].__setitem__(
+        "--frequency", ("FLOAT", "Noise frequency in cycles per image width"))),
+    ("a new shared name without an entry", lambda ps: [ps[s].__setitem__("--brand-new", ("INT", "x"))
+                                                       for s in ["dfvn-sample sample", "dfvn-sample stats"]]),
+    ("--seed as a float in field", lambda ps: ps["dfvn-sample field"].__setitem__(
+        "--seed", ("FLOAT", ps["dfvn-sample field"]["--seed"][1]))),
+]:
+    mutated = {s: dict(o) for s, o in per_section.items()}
+    mutate(mutated)
+    check(len(vocabulary_problems(mutated)) == 1, f"the check catches {what}: {vocabulary_problems(mutated)}")
+
+# Every name that speaks of a frequency says in what unit.
+for name, uses in takers.items():
+    if "frequenc" in name or "cycles" in name:
+        for section, _, description in uses:
+            check("cycles per" in normalise(description), f"{name} in {section}: a frequency with its unit")
+
+# Every method, from kAllMethods, in the usage, sample's description and every --methods.
+methods = kall_methods()
+check(len(methods) == 8, f"kAllMethods read from method.hpp: {methods}")
+usage = run().stdout
+check(all(m in usage for m in methods), "the usage lists every method")
+for section, opts in per_section.items():
+    if "--methods" in opts:
+        listed = re.findall(r"[a-z][a-z-]*", opts["--methods"][1].split("methods, of", 1)[-1])
+        check(all(m in listed for m in methods), f"{section} --methods lists every method")
+check(all(m in parts["dfvn-sample sample"].split("Usage:")[0] for m in methods), "sample's description lists every method")
+
+reproduce_help = run("reproduce", "--help").stdout
+for sub in ["table1", "table2", "cnj-study", "integration"]:
+    check(re.search(rf"^  {sub} ", reproduce_help, re.M) is not None and sub in reproduce_help.split("Subcommands:")[-1],
+          f"reproduce --help lists {sub}")
+
+# The refused spellings: one line, exit 2, naming the new option, and no output file.
+with tempfile.TemporaryDirectory() as work:
+    for args, new_name in REFUSED:
+        r = run(*args, cwd=work)
+        lines = r.stderr.strip().split("\n")
+        check(r.returncode != 0 and len(lines) == 1 and new_name in lines[0] and "error" in lines[0],
+              f"{' '.join(args)}: refused naming {new_name}: {r.stderr.strip()!r}")
+    check(os.listdir(work) == [], f"no file written by a refused command: {os.listdir(work)}")
+    # The refused names stay out of the help.
+    for hidden in ["--seeds", "--frequencies"]:
+        check(hidden not in per_section["dfvn-sample reproduce cnj-study"], f"cnj-study --help does not list {hidden}")
+    for hidden in ["--frequency", "--boundary-width"]:
+        check(hidden not in per_section["dfvn-sample sample"], f"sample --help does not list {hidden}")
+    # -o, --output and --stats are one option: the statistics CSV.
+    for spelling in ["-o", "--output", "--stats"]:
+        r = run("-d", "2", "--grid", "4", "--methods", "jitter", "-q", "--no-timing", spelling, "s.csv", cwd=work)
+        header = open(os.path.join(work, "s.csv")).readline() if r.returncode == 0 else ""
+        check(header.startswith("dim,grid,method,") and ",cycles_per_spacing,field_frequency," in header,
+              f"sample {spelling} writes the statistics CSV with cycles_per_spacing: {r.stderr.strip()!r}")
+        os.remove(os.path.join(work, "s.csv")) if os.path.exists(os.path.join(work, "s.csv")) else None
+
+print(f"{len(failures)} failure(s)")
+sys.exit(1 if failures else 0)
