@@ -30,7 +30,7 @@ struct SampleCommand : Subcommand {
   ProgressOptions progress;
   dfvn::SampleConfig config;
   std::string methods = "cnj,jitter-matched,jitter,pds,sobol";
-  std::string protocol = "paper";
+  std::string protocol;  // empty: paper with --grid, unit with -n (see --protocol)
   std::string knn = "nanoflann";
   std::string integrator = "rk4";
   std::string noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
@@ -83,8 +83,9 @@ struct SampleCommand : Subcommand {
     cmd->add_option("--protocol", protocol,
                     "paper: Section 5.1 as the paper ran it (lattice linspace(0.05, 0.95, K), jitter +-0.05, PDS\n"
                     "radius 0.1 and Sobol on [0, 0.1K]^N, Sobol count 2^round(log2 K^N)); unit: every method in\n"
-                    "[0,1]^N at the density of a cell-centred K^N lattice (jitter +-1/(2K), PDS radius 1/K)")
-        ->capture_default_str()
+                    "[0,1]^N at the density of a cell-centred K^N lattice (jitter +-1/(2K), PDS radius 1/K).\n"
+                    "Default: paper with --grid (or neither), unit with -n, so that -n COUNT gives points in [0,1]^N\n"
+                    "as scipy.stats.qmc and UTK do")
         ->check(CLI::IsMember({"paper", "unit"}));
     stats_option = cmd->add_option("-o,--output,--stats", stats_path,
                                    "Main output: the statistics CSV ('-' = standard output); --stats is its second name.\n"
@@ -209,7 +210,7 @@ struct SampleCommand : Subcommand {
   void run() {
     config.seed = common.seed;
     config.threads = common.threads;
-    config.protocol = dfvn::parse_protocol(protocol);
+    config.protocol = dfvn::parse_protocol(!protocol.empty() ? protocol : count > 0 ? "unit" : "paper");
     config.knn = dfvn::parse_knn_backend(knn);
     config.scramble = dfvn::parse_scramble(scramble);
     config.cnj.trace.integrator = dfvn::parse_integrator(integrator);
