@@ -3,7 +3,8 @@
 # sizes, --no-timing where the command has it, and every file they write (standard output and error
 # included) compared with cmp against tests/cli/reference/, recorded from main 7b10613 before the
 # refactor of issue 21 (re-recorded for issue 24's tidy outputs: the `stat` column, summary rows without
-# a word in `seed`, every real with a decimal point). Files whose bytes hold a time are compared with the time blanked (normalise
+# a word in `seed`, every real with a decimal point; and for its vocabulary: cycles_per_spacing, the
+# help of every subcommand, and -n's unit protocol). Files whose bytes hold a time are compared with the time blanked (normalise
 # below says which). Run from a fixed folder with relative paths, so the paths written into the
 # outputs are the same on every machine.
 #

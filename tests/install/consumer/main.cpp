@@ -11,12 +11,12 @@
 
 // The consumer's own headers, after the library's (they refuse to be included before this macro).
 #define CONSUMER_OWN_HEADERS
-#include "dfvn/core/point_set.hpp"
-#include "dfvn/core/progress.hpp"
-#include "dfvn/field/dfvn_field.hpp"
-#include "dfvn/io/csv.hpp"
-#include "dfvn/sampling/lattice.hpp"
-#include "dfvn/stats/nearest_neighbour.hpp"
+#include "core/point_set.hpp"
+#include "core/progress.hpp"
+#include "field/dfvn_field.hpp"
+#include "io/csv.hpp"
+#include "sampling/lattice.hpp"
+#include "stats/nearest_neighbour.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 4) {
