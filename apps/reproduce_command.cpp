@@ -221,7 +221,7 @@ struct ReproduceCommand : Subcommand {
     table2.validate();
     dfvn::check_figure_prerequisites();  // before the output folder is made
     dfvn::check_outputs(files_in(out2, dfvn::table2_output_files(table2)), {out2});
-    dfvn::ProgressReporter* reporter = progress.make();
+    dfvn::ProgressReporter* reporter = progress.make(dfvn::table2_stage_weights(table2));
     const auto result = dfvn::run_table2(table2, reporter->callback());
     reporter->complete();
     std::fputs(dfvn::markdown_as_plain_text(dfvn::write_table2(out2, result, log)).c_str(), stdout);

@@ -114,7 +114,10 @@ struct Table2Result {
 // Euler and RK4, 64 and 512 steps, 0, 1 and 10 Newton reprojection steps (Eq. 12), t = 0.5; the
 // reference is 2048 RK4 steps without reprojection (as the paper's). Then the second resolution and
 // Figure 5's top row.
+// `progress`: one stage per image warped, in the order of table2_stage_weights, which gives each
+// stage's expected cost (pixels x expected field evaluations per pixel).
 Table2Result run_table2(const Table2Config& config, const StageProgress& progress = {});
+std::vector<double> table2_stage_weights(const Table2Config& config);
 
 // DIR/table2.csv, DIR/table2.md, DIR/<variant>.png, DIR/source.png, DIR/reference.png,
 // DIR/timeline.csv with DIR/time-<t>.png, and, with gnuplot, DIR/figure5.png
