@@ -142,7 +142,7 @@ struct ReproduceCommand : Subcommand {
     study.validate();
     dfvn::check_figure_prerequisites();  // before the output folder is made
     dfvn::check_outputs(files_in(study.out_dir, dfvn::cnj_study_output_files()), {study.out_dir});
-    dfvn::ProgressReporter* reporter = progress.make();
+    dfvn::ProgressReporter* reporter = progress.make(dfvn::cnj_study_stage_weights(study));
     const auto result = dfvn::run_cnj_study(study, reporter->callback());
     reporter->complete();
     std::fputs(dfvn::markdown_as_plain_text(dfvn::write_cnj_study(result, log)).c_str(), stdout);
@@ -178,7 +178,7 @@ struct ReproduceCommand : Subcommand {
     integration.validate();
     dfvn::check_figure_prerequisites();  // before the output folder is made
     dfvn::check_outputs(files_in(integration.out_dir, dfvn::integration_output_files(integration)), {integration.out_dir});
-    dfvn::ProgressReporter* reporter = progress.make();
+    dfvn::ProgressReporter* reporter = progress.make(dfvn::integration_stage_weights(integration));
     const auto result = dfvn::run_integration(integration, reporter->callback());
     reporter->complete();
     std::fputs(dfvn::markdown_as_plain_text(dfvn::write_integration(result, log)).c_str(), stdout);
@@ -197,7 +197,7 @@ struct ReproduceCommand : Subcommand {
     config.validate();
     dfvn::check_figure_prerequisites();  // before the output folder is made
     dfvn::check_outputs(files_in(out1, dfvn::table1_output_files()), {out1});
-    dfvn::ProgressReporter* reporter = progress.make();
+    dfvn::ProgressReporter* reporter = progress.make(dfvn::table1_stage_weights(config));
     const auto result = dfvn::run_table1(config, reporter->callback());
     reporter->complete();
     std::fputs(dfvn::markdown_as_plain_text(dfvn::write_table1(config, result, log)).c_str(), stdout);

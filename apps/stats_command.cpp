@@ -31,7 +31,7 @@ struct StatsCommand : Subcommand {
   std::string knn = "nanoflann";
   double domain_side = 1.0;
   std::string spectrum_prefix;
-  int spectrum_frequency = 32;
+  int spectrum_frequency = 0;  // 0: dfvn::default_spectrum_frequency
   std::string json_path;
   bool discrepancy = false;
   bool no_timing = false;
@@ -67,8 +67,11 @@ struct StatsCommand : Subcommand {
     cmd->add_option("--spectrum", spectrum_prefix,
                     "2D/3D sets: also write the power spectrum averaged over the file's sets: PREFIX.csv (k0..,power),\n"
                     "PREFIX_radial.csv (frequency,power,anisotropy_db,frequencies) and, with gnuplot, PREFIX.png");
-    cmd->add_option("--spectrum-frequency", spectrum_frequency, "Largest integer frequency K of the spectrum ([-K,K]^N)")
-        ->capture_default_str()
+    cmd->add_option("--spectrum-frequency", spectrum_frequency,
+                    fmt::format("Largest integer frequency K of the spectrum ([-K,K]^N, cycles per domain side);\n"
+                                "default: twice the lattice peak n^(1/N) of the sets' mean count n, rounded up (at most\n"
+                                "{} in 2D, {} in 3D)",
+                                dfvn::kMaxDefaultFrequency2d, dfvn::kMaxDefaultFrequency3d))
         ->check(CLI::Range(1, 512));
     progress.add_to(*cmd);
     add_threads_option(*cmd, common.threads);
@@ -104,8 +107,17 @@ struct StatsCommand : Subcommand {
     options.knn = dfvn::parse_knn_backend(knn);
     options.threads = common.threads;
     options.periodic = periodic;
-    dfvn::ProgressReporter* reporter =
-        progress.make(static_cast<int>(sets.size()) * dfvn::point_statistics_stage_count(options) + (spectrum_prefix.empty() ? 0 : 1));
+    double mean_count = 0.0;
+    for (const dfvn::PointSet& set : sets) mean_count += static_cast<double>(set.size()) / static_cast<double>(sets.size());
+    const int dimension = sets.front().dimension;
+    const int spectrum_k = spectrum_frequency > 0 ? spectrum_frequency : dfvn::default_spectrum_frequency(mean_count, dimension);
+    // The [k/n] counter: each set's statistics, then the spectrum, weighted by their expected costs.
+    std::vector<double> stage_weights;
+    for (const dfvn::PointSet& set : sets)
+      for (double w : dfvn::point_statistics_stage_weights(options, set.size(), set.dimension)) stage_weights.push_back(w);
+    if (!spectrum_prefix.empty())
+      stage_weights.push_back(dfvn::expected_spectrum_cost(sets, spectrum_k));
+    dfvn::ProgressReporter* reporter = progress.make(std::move(stage_weights));
     std::string csv = dfvn::point_statistics_csv_header();
     std::vector<std::string> rows;
     dfvn::PointStatisticsRun run{input, std::string(dfvn::to_string(input_format)), domain_side, options, {}, {}, !no_timing};
@@ -122,8 +134,8 @@ struct StatsCommand : Subcommand {
     }
     if (sets.size() > 1) csv += dfvn::realization_summary_rows(csv.substr(0, csv.find('\n')), rows, {"input", "dim"}, "set");
     if (!spectrum_prefix.empty()) {
-      reporter->report("spectrum", 0.0);
-      const auto spectrum = dfvn::power_spectrum(sets, spectrum_frequency, common.threads);
+      const auto spectrum = dfvn::power_spectrum(sets, spectrum_k, common.threads,
+                                                 [&](double f) { reporter->report("spectrum", f); });
       reporter->finish();
       dfvn::write_spectrum_files(spectrum_prefix, spectrum,
                                  [](const std::string& line) { std::fprintf(stderr, "%s: %s\n", kProgram, line.c_str()); });

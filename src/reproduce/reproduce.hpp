@@ -62,7 +62,10 @@ struct Table1Result {
   Table1Cell cell(std::size_t d, Method method, bool simplex = false) const;
 };
 
+// `progress`: per dimension and realization, each method's stages (run_sampling's), then the simplex
+// column's; table1_stage_weights gives their expected costs in that order.
 Table1Result run_table1(const Table1Config& config, const StageProgress& progress = {});
+std::vector<double> table1_stage_weights(const Table1Config& config);
 
 // DIR/table1.csv (one row per realization, column and dimension, then mean and sd rows), DIR/rdf.csv
 // (the first realization), DIR/table1.md; then DIR/figure4.png (scripts/figure4.gp) when gnuplot is
