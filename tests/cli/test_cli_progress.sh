@@ -48,6 +48,10 @@ grep -q "\[2/2\] spectrum" "$work/spec.log" && ok || bad "no spectrum stage: $(c
   [[ ! -s $work/err ]] && cmp -s "$work/specA.csv" "$work/specB.csv" && cmp -s "$work/specA_radial.csv" "$work/specB_radial.csv" &&
   ok || bad "stats --spectrum -q: $(cat "$work/err")"
 
+run_both field field --input "$(dirname "${BASH_SOURCE[0]}")/../../data/points_3d_example.csv" -o -
+cmp -s "$work/field.out1" "$work/field.out2" && ok || bad "field: progress changed stdout"
+run_both field_diagnose field --diagnose --diagnose-points 2000 -o "$work/diagnosis.csv"
+
 # The reproductions, small. Their stdout holds measured times, so only stderr is compared.
 run_both table2 reproduce table2 --width 16 --height 9 --second-width 8 --out "$work/t2"
 grep -q "^dfvn-sample: \[1/29\] reference" "$work/table2.log" && ok || bad "table2: $(head -1 "$work/table2.log")"
