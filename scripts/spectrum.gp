@@ -28,8 +28,13 @@ set xlabel 'k0'; set ylabel 'k1'; set size ratio -1
 set logscale cb; set cbrange [0.01:power_top]; set palette defined (0 'black', 1 '#1f3f9f', 2 '#d62728', 3 'yellow')
 plot $plane using 1:2:($3 < power_top ? $3 : power_top) with image notitle
 unset logscale cb; set size noratio
-set arrow 1 from peak, graph 0 to peak, graph 1 nohead dashtype 2 linecolor rgb 'gray40'
-set label 1 sprintf('lattice peak %.3g', peak) at peak, graph 0.95 offset character 0.5, 0 left textcolor rgb 'gray40'
+stats ARG3 skip 1 using 1 nooutput
+if (peak <= STATS_max) {
+  set arrow 1 from peak, graph 0 to peak, graph 1 nohead dashtype 2 linecolor rgb 'gray40'
+  set label 1 sprintf('lattice peak %.3g', peak) at peak, graph 0.95 offset character 0.5, 0 left textcolor rgb 'gray40'
+} else {  # a --spectrum-frequency below the peak: say where it is
+  set label 1 sprintf('lattice peak %.3g: beyond |k| = %d', peak, STATS_max) at graph 0.02, graph 0.95 left textcolor rgb 'gray40'
+}
 
 set title 'radial average and anisotropy'
 set xlabel '|k|'; set ylabel 'P'; set grid
