@@ -35,6 +35,7 @@ struct FieldCommand : Subcommand {
   std::string output = "-";
   bool diagnose = false;
   dfvn::DiagnosisOptions diagnosis;
+  ProgressOptions progress;
 
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
@@ -86,6 +87,7 @@ struct FieldCommand : Subcommand {
                     "Main output: the CSV of points, field vectors and noise values (with --diagnose: the diagnosis\n"
                     "row), written whole or not at all ('-' = standard output)")
         ->capture_default_str();
+    progress.add_to(*cmd);
     add_common_options(*cmd, common);
     cmd->callback([this] { run(); });
   }
@@ -117,7 +119,10 @@ struct FieldCommand : Subcommand {
       diagnosis.field = field_options();
       diagnosis.seed = common.seed;
       diagnosis.threads = common.threads;
-      const dfvn::FieldDiagnosis d = dfvn::diagnose_field(diagnosis);
+      dfvn::ProgressReporter* reporter = progress.make(1);
+      const dfvn::FieldDiagnosis d = dfvn::diagnose_field(
+          diagnosis, [&](double f) { reporter->report(fmt::format("diagnose {} points", diagnosis.points), f); });
+      reporter->complete();
       dfvn::write_file_atomically(output, dfvn::diagnosis_csv_header() + dfvn::diagnosis_csv_row(d));
       return;
     }
@@ -143,7 +148,11 @@ struct FieldCommand : Subcommand {
     query.threads = common.threads;
     try {
       std::vector<double> velocity(points.rows() * points.dimension), values(points.rows() * (points.dimension - 1));
-      dfvn::evaluate_field(query, points.coordinates.data(), points.rows(), velocity.data(), values.data());
+      dfvn::ProgressReporter* reporter = progress.make(1);
+      const std::string stage = fmt::format("field at {} points", points.rows());
+      dfvn::evaluate_field(query, points.coordinates.data(), points.rows(), velocity.data(), values.data(),
+                           [&](double f) { reporter->report(stage, f); });
+      reporter->complete();
       dfvn::write_file_atomically(output, dfvn::field_csv(points, velocity.data(), values.data(), query.threads));
     } catch (const std::invalid_argument& e) {
       fail(input_name() + ", " + e.what());

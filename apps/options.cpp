@@ -162,6 +162,12 @@ dfvn::ProgressReporter* ProgressOptions::make(int stages) {
   return &*reporter_;
 }
 
+dfvn::ProgressReporter* ProgressOptions::make(std::vector<double> stage_weights) {
+  dfvn::ProgressReporter* reporter = make(0);
+  reporter->set_stage_weights(std::move(stage_weights));
+  return reporter;
+}
+
 // The outputs of a reproduction: its files in `dir`, each named as "--out (table1.csv)" in messages.
 std::vector<std::pair<std::string, std::string>> files_in(const std::string& dir, const std::vector<std::string>& names) {
   std::vector<std::pair<std::string, std::string>> outputs;

@@ -63,6 +63,8 @@ struct ProgressOptions {
   void add_to(CLI::App& app);
   // A reporter on stderr; `stages`: how many stages the run reports (0: unknown).
   dfvn::ProgressReporter* make(int stages = 0);
+  // A reporter on stderr for stages of these expected costs, in the order the run reports them.
+  dfvn::ProgressReporter* make(std::vector<double> stage_weights);
 
  private:
   std::optional<dfvn::ProgressReporter> reporter_;

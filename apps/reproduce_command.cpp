@@ -158,7 +158,7 @@ struct ReproduceCommand : Subcommand {
     study.validate();
     dfvn::check_figure_prerequisites();  // before the output folder is made
     dfvn::check_outputs(files_in(study.out_dir, dfvn::cnj_study_output_files()), {study.out_dir});
-    dfvn::ProgressReporter* reporter = progress.make();
+    dfvn::ProgressReporter* reporter = progress.make(dfvn::cnj_study_stage_weights(study));
     const auto result = dfvn::run_cnj_study(study, reporter->callback());
     reporter->complete();
     std::fputs(dfvn::markdown_as_plain_text(dfvn::write_cnj_study(result, log)).c_str(), stdout);
@@ -196,7 +196,7 @@ struct ReproduceCommand : Subcommand {
     integration.validate();
     dfvn::check_figure_prerequisites();  // before the output folder is made
     dfvn::check_outputs(files_in(integration.out_dir, dfvn::integration_output_files(integration)), {integration.out_dir});
-    dfvn::ProgressReporter* reporter = progress.make();
+    dfvn::ProgressReporter* reporter = progress.make(dfvn::integration_stage_weights(integration));
     const auto result = dfvn::run_integration(integration, reporter->callback());
     reporter->complete();
     std::fputs(dfvn::markdown_as_plain_text(dfvn::write_integration(result, log)).c_str(), stdout);
@@ -215,7 +215,7 @@ struct ReproduceCommand : Subcommand {
     config.validate();
     dfvn::check_figure_prerequisites();  // before the output folder is made
     dfvn::check_outputs(files_in(out1, dfvn::table1_output_files()), {out1});
-    dfvn::ProgressReporter* reporter = progress.make();
+    dfvn::ProgressReporter* reporter = progress.make(dfvn::table1_stage_weights(config));
     const auto result = dfvn::run_table1(config, reporter->callback());
     reporter->complete();
     std::fputs(dfvn::markdown_as_plain_text(dfvn::write_table1(config, result, log)).c_str(), stdout);
@@ -239,7 +239,7 @@ struct ReproduceCommand : Subcommand {
     table2.validate();
     dfvn::check_figure_prerequisites();  // before the output folder is made
     dfvn::check_outputs(files_in(out2, dfvn::table2_output_files(table2)), {out2});
-    dfvn::ProgressReporter* reporter = progress.make();
+    dfvn::ProgressReporter* reporter = progress.make(dfvn::table2_stage_weights(table2));
     const auto result = dfvn::run_table2(table2, reporter->callback());
     reporter->complete();
     std::fputs(dfvn::markdown_as_plain_text(dfvn::write_table2(out2, result, log)).c_str(), stdout);

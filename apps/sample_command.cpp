@@ -261,7 +261,10 @@ struct SampleCommand : Subcommand {
     for (const std::string& warning : dfvn::sampling_warnings(config)) std::fprintf(stderr, "%s: warning: %s\n", kProgram, warning.c_str());
 
     const dfvn::PointFormat point_format = dfvn::parse_point_format(format);
-    dfvn::ProgressReporter* reporter = progress.make(realizations * dfvn::sampling_stage_count(config));
+    std::vector<double> stage_weights;  // every realization runs the same stages
+    for (int r = 0; r < realizations; ++r)
+      for (double w : dfvn::sampling_stage_weights(config)) stage_weights.push_back(w);
+    dfvn::ProgressReporter* reporter = progress.make(std::move(stage_weights));
     std::string stats = dfvn::stats_csv_header();
     std::string rdf = dfvn::rdf_csv_header();
     std::vector<std::string> realization_rows;

@@ -41,7 +41,7 @@ struct StatsCommand : Subcommand {
   std::string knn = "nanoflann";
   double domain_side = 1.0;
   std::string spectrum_prefix;
-  int spectrum_frequency = 32;
+  int spectrum_frequency = 0;  // 0: dfvn::default_spectrum_frequency
   std::string json_path;
   bool discrepancy = false;
   bool no_timing = false;
@@ -103,8 +103,10 @@ struct StatsCommand : Subcommand {
                     "2D/3D sets: also write the power spectrum averaged over the file's sets: PREFIX.csv (k0..,power),\n"
                     "PREFIX_radial.csv (frequency,power,anisotropy_db,frequencies) and, with gnuplot, PREFIX.png");
     cmd->add_option("--spectrum-frequency", spectrum_frequency,
-                    "Largest integer frequency K of the spectrum ([-K,K]^N), in cycles per domain side S")
-        ->capture_default_str()
+                    fmt::format("Largest integer frequency K of the spectrum ([-K,K]^N, cycles per domain side);\n"
+                                "default: twice the lattice peak n^(1/N) of the sets' mean count n, rounded up (at most\n"
+                                "{} in 2D, {} in 3D)",
+                                dfvn::kMaxDefaultFrequency2d, dfvn::kMaxDefaultFrequency3d))
         ->check(CLI::Range(1, 512));
     progress.add_to(*cmd);
     add_threads_option(*cmd, common.threads);
@@ -172,9 +174,20 @@ struct StatsCommand : Subcommand {
     options.knn = dfvn::parse_knn_backend(knn);
     options.threads = common.threads;
     options.periodic = periodic;
-    const int stages_per_set = dfvn::point_statistics_stage_count(options) + (rdf_path.empty() ? 0 : 1);
-    dfvn::ProgressReporter* reporter =
-        progress.make(static_cast<int>(sets.size()) * stages_per_set + (spectrum_prefix.empty() ? 0 : 1));
+    double mean_count = 0.0;
+    for (const dfvn::PointSet& set : sets) mean_count += static_cast<double>(set.size()) / static_cast<double>(sets.size());
+    const int spectrum_k = spectrum_frequency > 0 ? spectrum_frequency
+                                                  : dfvn::default_spectrum_frequency(mean_count, sets.front().dimension);
+    // The [k/n] counter: each set's statistics, then the spectrum, weighted by their expected costs.
+    std::vector<double> stage_weights;
+    for (const dfvn::PointSet& set : sets) {
+      for (double w : dfvn::point_statistics_stage_weights(options, set.size(), set.dimension)) stage_weights.push_back(w);
+      // The RDF of the set after its statistics: about four times their cost (as sample weighs it).
+      if (!rdf_path.empty()) stage_weights.push_back(4.0 * static_cast<double>(set.size()) * static_cast<double>(set.dimension));
+    }
+    if (!spectrum_prefix.empty())
+      stage_weights.push_back(dfvn::expected_spectrum_cost(sets, spectrum_k));
+    dfvn::ProgressReporter* reporter = progress.make(std::move(stage_weights));
     std::string csv = dfvn::point_statistics_csv_header();
     std::string rdf_csv = "input,set,dim,r,g\n";
     std::vector<std::string> rows;
@@ -210,8 +223,8 @@ struct StatsCommand : Subcommand {
     if (!summarised.empty())
       csv += dfvn::realization_summary_rows(csv.substr(0, csv.find('\n')), summarised, {"input", "dim"}, "set");
     if (!spectrum_prefix.empty()) {
-      reporter->report("spectrum", 0.0);
-      const auto spectrum = dfvn::power_spectrum(sets, spectrum_frequency, common.threads);
+      const auto spectrum = dfvn::power_spectrum(sets, spectrum_k, common.threads,
+                                                 [&](double f) { reporter->report("spectrum", f); });
       reporter->finish();
       dfvn::write_spectrum_files(spectrum_prefix, spectrum,
                                  [](const std::string& line) { std::fprintf(stderr, "%s: %s\n", kProgram, line.c_str()); });

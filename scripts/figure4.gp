@@ -15,7 +15,10 @@ set datafile separator comma
 set multiplot layout rows, 4 title "Radial distribution functions g(r), edge-corrected; dashed: median nearest-neighbour distance\n".ARG6 noenhanced
 set key off
 set grid
-set yrange [0:*]
+# One y range for every panel, from the data: the panels compare at a glance.
+stats ARG2 skip 1 using 4 nooutput
+g_max = STATS_max > 1 ? STATS_max : 1
+set yrange [0:1.05 * g_max]
 set xlabel 'r'
 set ylabel 'g(r)'
 set rmargin 8  # room for the g = 1 label, right of the frame and off every curve

@@ -1,10 +1,13 @@
 # Power spectrum figure: the periodogram (2D: the (k0, k1) plane; 3D: its k2 = 0 slice) on a log colour
-# scale, and the radial average with the flat level 1 of uniform random points. Compiled into dfvn-sample
-# (src/plot/gnuplot.hpp), which runs it as
-#   gnuplot -c spectrum.gp OUT.png PREFIX.csv PREFIX_radial.csv DIM
+# scale, and the radial average with the flat level 1 of uniform random points and the lattice peak
+# marked. Compiled into dfvn-sample (src/plot/gnuplot.hpp), which runs it as
+#   gnuplot -c spectrum.gp OUT.png PREFIX.csv PREFIX_radial.csv DIM PEAK
 # PREFIX.csv: k0,k1[,k2],power with k0 varying fastest; PREFIX_radial.csv: frequency,power,anisotropy_db,...
-# (anisotropy_db empty where it is not defined)
+# (anisotropy_db empty where it is not defined); PEAK: the lattice peak frequency n^(1/N).
+# The DC term P(0) = n is left out of the colour scale (it would set its top and darken everything
+# else): it is drawn in the scale's top colour, and the scale spans the other frequencies' powers.
 dim = int(ARG4)
+peak = real(ARG5)
 power_floor = 1e-3  # the colour scale's floor: a periodogram can be 0 at a frequency
 set datafile separator comma
 set table $plane separator comma
@@ -14,14 +17,25 @@ if (dim == 3) {
   plot ARG2 skip 1 using 1:2:($3 > power_floor ? $3 : power_floor) with table
 }
 unset table
+# The largest power away from k = 0, for the top of the colour scale.
+stats $plane using (($1 != 0 || $2 != 0) ? $3 : NaN) nooutput
+power_top = STATS_max
 set terminal pngcairo size 1300, 560 font 'sans,10'
 set output ARG1
 set multiplot layout 1, 2 title sprintf('Power spectrum of %dD points, averaged over the sets', dim)
 set title 'periodogram P(k)'.(dim == 3 ? ' (k2 = 0 slice)' : '').', log colour scale'
 set xlabel 'k0'; set ylabel 'k1'; set size ratio -1
-set logscale cb; set cbrange [0.01:*]; set palette defined (0 'black', 1 '#1f3f9f', 2 '#d62728', 3 'yellow')
-plot $plane using 1:2:3 with image notitle
+set logscale cb; set cbrange [0.01:power_top]; set palette defined (0 'black', 1 '#1f3f9f', 2 '#d62728', 3 'yellow')
+plot $plane using 1:2:($3 < power_top ? $3 : power_top) with image notitle
 unset logscale cb; set size noratio
+stats ARG3 skip 1 using 1 nooutput
+if (peak <= STATS_max) {
+  set arrow 1 from peak, graph 0 to peak, graph 1 nohead dashtype 2 linecolor rgb 'gray40'
+  set label 1 sprintf('lattice peak %.3g', peak) at peak, graph 0.95 offset character 0.5, 0 left textcolor rgb 'gray40'
+} else {  # a --spectrum-frequency below the peak: say where it is
+  set label 1 sprintf('lattice peak %.3g: beyond |k| = %d', peak, STATS_max) at graph 0.02, graph 0.95 left textcolor rgb 'gray40'
+}
+
 set title 'radial average and anisotropy'
 set xlabel '|k|'; set ylabel 'P'; set grid
 # The anisotropy is empty where a shell's power is constant (identical points): draw it where it exists.

@@ -63,6 +63,35 @@ int sampling_stage_count(const SampleConfig& config) {
   return per_method * static_cast<int>(config.methods.size());
 }
 
+double sampling_generation_cost(Method method) {
+  switch (method) {
+    case Method::cnj: return 3.0;
+    case Method::pds: return 4.0;
+    case Method::jitter:
+    case Method::jitter_matched:
+    case Method::halton: return 0.2;
+    case Method::sobol:
+    case Method::random:
+    case Method::lhs: return 0.03;
+  }
+  return 1.0;
+}
+
+namespace {
+constexpr double kRdfCost = 4.0;  // the RDF against the statistics, measured alike
+}  // namespace
+
+std::vector<double> sampling_stage_weights(const SampleConfig& config) {
+  std::vector<double> weights;
+  for (Method method : config.methods) {
+    const double points = static_cast<double>(plan_method(config, method).requested);
+    weights.push_back(points * sampling_generation_cost(method));
+    if (config.compute_statistics) weights.push_back(points);
+    if (config.compute_statistics && config.compute_rdf) weights.push_back(points * kRdfCost);
+  }
+  return weights;
+}
+
 MethodPlan plan_method(const SampleConfig& config, Method method) {
   const LatticeSpec lattice = config.lattice();
   const std::uint64_t lattice_points = lattice.point_count();

@@ -29,7 +29,7 @@ void DiagnosisOptions::validate() const {
 namespace {
 
 template <int N>
-FieldDiagnosis diagnose(const DiagnosisOptions& options) {
+FieldDiagnosis diagnose(const DiagnosisOptions& options, const FractionProgress& progress) {
   Stopwatch stopwatch;
   const DfvnField<N> field(options.seed, options.field);
   const double extent = options.periods / options.field.frequency;
@@ -60,7 +60,10 @@ FieldDiagnosis diagnose(const DiagnosisOptions& options) {
       jacobian2 += column.squaredNorm();
     }
     divergence[i] = jacobian2 > 0.0 ? std::abs(div) / std::sqrt(jacobian2) : -1.0;  // -1: still point
+    if (progress && omp_get_thread_num() == 0 && i % 256 == 0)  // only the first thread reports
+      progress(static_cast<double>(i) / static_cast<double>(count));
   }
+  if (progress) progress(1.0);
   FieldDiagnosis d;
   d.options = options;
   // Sums in index order: the same for any thread count.
@@ -98,9 +101,9 @@ FieldDiagnosis diagnose(const DiagnosisOptions& options) {
 
 }  // namespace
 
-FieldDiagnosis diagnose_field(const DiagnosisOptions& options) {
+FieldDiagnosis diagnose_field(const DiagnosisOptions& options, const FractionProgress& progress) {
   options.validate();
-  return dispatch_dimension(options.dimension, [&]<int N>() { return diagnose<N>(options); });
+  return dispatch_dimension(options.dimension, [&]<int N>() { return diagnose<N>(options, progress); });
 }
 
 std::string diagnosis_csv_header() {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 
+#include "dfvn/core/progress.hpp"
 #include "dfvn/field/dfvn_field.hpp"
 
 namespace dfvn {
@@ -46,7 +47,8 @@ struct FieldDiagnosis {
 };
 
 // Deterministic for a seed; independent of the thread count.
-FieldDiagnosis diagnose_field(const DiagnosisOptions& options);
+// `progress`: points measured over points.
+FieldDiagnosis diagnose_field(const DiagnosisOptions& options, const FractionProgress& progress = {});
 
 // CSV: a header line and one row.
 std::string diagnosis_csv_header();

@@ -11,7 +11,8 @@
 
 namespace dfvn {
 
-void evaluate_field(const FieldQuery& query, const double* points, std::size_t rows, double* velocity, double* values) {
+void evaluate_field(const FieldQuery& query, const double* points, std::size_t rows, double* velocity, double* values,
+                    const FractionProgress& progress) {
   check_thread_count(query.threads);
   dispatch_dimension(query.dimension, [&]<int N>() {
     const DfvnField<N> field(query.seed, query.field);
@@ -27,7 +28,11 @@ void evaluate_field(const FieldQuery& query, const double* points, std::size_t r
       const FieldSample<N> s = field.evaluate(Eigen::Map<const Vec<N>>(points + row * N));
       Eigen::Map<Vec<N>>(velocity + row * N) = s.velocity;
       std::copy(s.value.begin(), s.value.end(), values + row * (N - 1));
+      // The first thread's static block is rows [0, rows / threads): its share done stands for all.
+      if (progress && omp_get_thread_num() == 0 && row % 1024 == 0)
+        progress(std::min(1.0, static_cast<double>(row) * omp_get_num_threads() / static_cast<double>(rows)));
     }
+    if (progress) progress(1.0);
   });
 }
 

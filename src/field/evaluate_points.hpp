@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "dfvn/core/progress.hpp"
 #include "dfvn/field/dfvn_field.hpp"
 
 namespace dfvn {
@@ -19,6 +20,8 @@ struct FieldQuery {
 // c(x) and values (rows x (N-1), row-major) the noise values f_i(x). The numbers do not depend on the
 // thread count. Throws std::invalid_argument, naming the point (1-based) and column, when frequency *
 // coordinate is outside the noise domain (noise/noise_domain.hpp), NaN included; nothing is written then.
-void evaluate_field(const FieldQuery& query, const double* points, std::size_t rows, double* velocity, double* values);
+// `progress`: rows done over rows.
+void evaluate_field(const FieldQuery& query, const double* points, std::size_t rows, double* velocity, double* values,
+                    const FractionProgress& progress = {});
 
 }  // namespace dfvn

@@ -96,7 +96,10 @@ struct CnjStudyResult {
   double seconds = 0.0;
 };
 
+// `progress`: one stage per cell and seed ("4D simplex F=0.35 C=0.5 M=2 seed 1"), then each dimension's
+// jitter curve; cnj_study_stage_weights gives their expected costs in that order.
 CnjStudyResult run_cnj_study(const CnjStudyConfig& config, const StageProgress& progress = {});
+std::vector<double> cnj_study_stage_weights(const CnjStudyConfig& config);
 
 // The rule that picks the CNJ defaults, applied to the default basis (kDefaultNoiseBasis), on means
 // over seeds: among the (frequency, step scale, steps) cells that in EVERY studied dimension move points

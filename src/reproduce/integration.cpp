@@ -90,6 +90,18 @@ std::optional<double> fitted_slope(const std::vector<double>& x, const std::vect
 
 }  // namespace
 
+std::vector<double> integration_stage_weights(const IntegrationConfig& config) {
+  // Per realization: generate the K^N points, then sum the six integrands over them (about one
+  // statistics pass); Sobol's count is the nearest power of two, Poisson disk's below K^N.
+  std::vector<double> weights;
+  for (int dimension : config.dimensions)
+    for (Method method : config.methods)
+      for (int grid : integration_grids(dimension, config.max_points))
+        weights.push_back(config.realizations * std::pow(static_cast<double>(grid), dimension) *
+                          (1.0 + sampling_generation_cost(method)));
+  return weights;
+}
+
 IntegrationResult run_integration(const IntegrationConfig& config, const StageProgress& progress) {
   config.validate();
   IntegrationResult result{config, {}, {}};

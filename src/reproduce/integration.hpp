@@ -57,7 +57,10 @@ struct IntegrationResult {
   std::vector<IntegrationSlope> slopes;
 };
 
+// `progress`: one stage per dimension, method and size ("5D cnj K=6"), its fraction the realizations
+// done; integration_stage_weights gives their expected costs in that order.
 IntegrationResult run_integration(const IntegrationConfig& config, const StageProgress& progress = {});
+std::vector<double> integration_stage_weights(const IntegrationConfig& config);
 
 // DIR/integration.csv (the cells), DIR/integration_slopes.csv, DIR/integration.md (tables and a
 // reading) and, with gnuplot, DIR/integration_<N>d.png (scripts/integration.gp). Returns the

@@ -62,7 +62,10 @@ struct Table1Result {
   Table1Cell cell(std::size_t d, Method method, bool simplex = false) const;
 };
 
+// `progress`: per dimension and realization, each method's stages (run_sampling's), then the simplex
+// column's; table1_stage_weights gives their expected costs in that order.
 Table1Result run_table1(const Table1Config& config, const StageProgress& progress = {});
+std::vector<double> table1_stage_weights(const Table1Config& config);
 
 // DIR/table1.csv (one row per realization, column and dimension, stat = value; then the mean and sd rows
 // of experiment/realizations.hpp), DIR/rdf.csv
@@ -115,7 +118,10 @@ struct Table2Result {
 // Euler and RK4, 64 and 512 steps, 0, 1 and 10 Newton reprojection steps (Eq. 12), t = 0.5; the
 // reference is 2048 RK4 steps without reprojection (as the paper's). Then the second resolution and
 // Figure 5's top row.
+// `progress`: one stage per image warped, in the order of table2_stage_weights, which gives each
+// stage's expected cost (pixels x expected field evaluations per pixel).
 Table2Result run_table2(const Table2Config& config, const StageProgress& progress = {});
+std::vector<double> table2_stage_weights(const Table2Config& config);
 
 // DIR/table2.csv, DIR/table2.md, DIR/<variant>.png, DIR/source.png, DIR/reference.png,
 // DIR/timeline.csv with DIR/time-<t>.png, and, with gnuplot, DIR/figure5.png

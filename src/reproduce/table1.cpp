@@ -71,43 +71,78 @@ void Table1Config::validate() const {
   check_seed_range(seed, static_cast<std::uint64_t>(realizations), "--seed", "--realizations");
 }
 
+namespace {
+
+// Dimension d's configuration under the paper protocol.
+SampleConfig table1_config(const Table1Config& config, int dimension) {
+  SampleConfig c;
+  c.dimension = dimension;
+  c.grid = table1_grid(dimension);
+  c.seed = config.seed;
+  c.threads = config.threads;
+  c.methods = {Method::cnj, Method::jitter, Method::pds, Method::sobol};
+  c.protocol = Protocol::paper;
+  c.cnj = config.cnj;
+  c.cnj.domain = CnjDomain::cube;
+  c.cnj.domain_mode = DomainMode::drop;  // the paper's protocol: points that leave [0,1]^N are dropped
+  c.rdf = config.rdf;
+  return c;
+}
+
+// Realization r of a dimension's configuration: Figure 4 shows one realization, so only the first
+// computes RDFs (their bins follow each set's density).
+SampleConfig table1_realization(const Table1Config& config, const SampleConfig& c, int r) {
+  SampleConfig realization = c;
+  realization.seed = config.seed + static_cast<std::uint64_t>(r);
+  realization.compute_rdf = r == 0;
+  return realization;
+}
+
+// The simplex CNJ column: the paper's construction beside the realization.
+SampleConfig paper_construction(const SampleConfig& realization) {
+  SampleConfig paper = realization;
+  paper.methods = {Method::cnj};
+  paper.cnj.noise = NoiseBasis::simplex;
+  // Section 5.1 traces one RK4 step; a count the user chose is kept.
+  if (paper.cnj.trace.steps == CnjOptions::kStepsByDomainMode) paper.cnj.trace.steps = 1;
+  paper.compute_rdf = false;
+  return paper;
+}
+
+}  // namespace
+
+std::vector<double> table1_stage_weights(const Table1Config& config) {
+  std::vector<double> weights;
+  for (int dimension : config.dimensions) {
+    const SampleConfig c = table1_config(config, dimension);
+    for (int r = 0; r < config.realizations; ++r) {
+      const SampleConfig realization = table1_realization(config, c, r);
+      for (const SampleConfig& run : {realization, paper_construction(realization)})
+        for (double w : sampling_stage_weights(run)) weights.push_back(w);
+    }
+  }
+  return weights;
+}
+
 Table1Result run_table1(const Table1Config& config, const StageProgress& progress) {
   config.validate();
   Table1Result result;
   result.realizations = config.realizations;
   result.machine = machine_description();
   for (int dimension : config.dimensions) {
-    SampleConfig c;
-    c.dimension = dimension;
-    c.grid = table1_grid(dimension);
-    c.seed = config.seed;
-    c.threads = config.threads;
-    c.methods = {Method::cnj, Method::jitter, Method::pds, Method::sobol};
-    c.protocol = Protocol::paper;
-    c.cnj = config.cnj;
-    c.cnj.domain = CnjDomain::cube;
-    c.cnj.domain_mode = DomainMode::drop;  // the paper's protocol: points that leave [0,1]^N are dropped
-    c.rdf = config.rdf;
+    const SampleConfig c = table1_config(config, dimension);
     result.configs.push_back(c);
     result.runs.emplace_back();
     result.simplex_cnj.emplace_back();
     const Stopwatch wall;
     for (int r = 0; r < config.realizations; ++r) {
-      SampleConfig realization = c;
-      realization.seed = config.seed + static_cast<std::uint64_t>(r);
-      realization.compute_rdf = r == 0;  // Figure 4 shows one realization: the RDF bins follow each set's density
+      const SampleConfig realization = table1_realization(config, c, r);
       const std::string name = config.realizations > 1 ? fmt::format("{}D seed {}", dimension, realization.seed)
                                                        : fmt::format("{}D", dimension);
       result.runs.back().push_back(run_sampling(realization, false, [&](std::string_view stage, double f) {
         if (progress) progress(fmt::format("{} {}", name, stage), f);
       }));
-      SampleConfig paper_construction = realization;
-      paper_construction.methods = {Method::cnj};
-      paper_construction.cnj.noise = NoiseBasis::simplex;
-      // Section 5.1 traces one RK4 step; a count the user chose is kept.
-      if (paper_construction.cnj.trace.steps == CnjOptions::kStepsByDomainMode) paper_construction.cnj.trace.steps = 1;
-      paper_construction.compute_rdf = false;
-      result.simplex_cnj.back().push_back(run_sampling(paper_construction, false, [&](std::string_view stage, double f) {
+      result.simplex_cnj.back().push_back(run_sampling(paper_construction(realization), false, [&](std::string_view stage, double f) {
         if (progress) progress(fmt::format("{} simplex {}", name, stage), f);
       }).front());
     }

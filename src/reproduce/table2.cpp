@@ -121,6 +121,37 @@ void Table2Config::validate() const {
     if (!std::isfinite(t)) throw std::invalid_argument("figure times must be finite");
 }
 
+namespace {
+
+// The expected field evaluations per image sample of a warp: RK4 evaluates 4 times a step, Euler once,
+// and Newton reprojection about once a step more for 1 iteration and 1.5-3.7 for 10 (they stop once
+// converged; measured with field_evaluations), taken as 2.5.
+double expected_evaluations(const WarpVariant& v) {
+  const double per_step = v.integrator == Integrator::rk4 ? 4.0 : 1.0;
+  return v.steps * (per_step + std::min(static_cast<double>(v.newton_steps), 2.5));
+}
+
+int second_height(const Table2Config& config) {
+  return static_cast<int>(std::lround(static_cast<double>(config.warp.height) * config.second_width / config.warp.width));
+}
+
+}  // namespace
+
+std::vector<double> table2_stage_weights(const Table2Config& config) {
+  const std::vector<WarpVariant> variants = table2_variants();
+  const double pixels = static_cast<double>(config.warp.width) * config.warp.height;
+  std::vector<double> weights{pixels * expected_evaluations(kReference)};
+  for (const WarpVariant& v : variants) weights.push_back(pixels * expected_evaluations(v));
+  if (config.second_width != 0) {
+    const double second = static_cast<double>(config.second_width) * second_height(config);
+    weights.push_back(second * expected_evaluations(kReference));
+    for (const WarpVariant& v : variants) weights.push_back(second * expected_evaluations(v));
+  }
+  for (std::size_t t = 0; t < config.figure_times.size(); ++t)
+    weights.push_back(pixels * expected_evaluations(WarpVariant{Integrator::rk4, Table2Config::kFigureSteps, 0}));
+  return weights;
+}
+
 Table2Result run_table2(const Table2Config& config, const StageProgress& progress) {
   config.validate();
   Table2Result result;
@@ -130,26 +161,23 @@ Table2Result run_table2(const Table2Config& config, const StageProgress& progres
   result.machine = machine_description();
   const std::vector<WarpVariant> variants = table2_variants();
   const bool has_second = config.second_width != 0;
-  const double stages = 2.0 * static_cast<double>(variants.size()) + 2.0 + static_cast<double>(config.figure_times.size());
-  double done = 0.0;
-  auto report = [&](const std::string& stage) {
-    if (progress) progress(stage, done++ / stages);
+  // One stage per image warped, in table2_stage_weights' order, each reporting its rows as it goes.
+  const auto stage = [&](const std::string& name) -> FractionProgress {
+    if (!progress) return {};
+    progress(name, 0.0);
+    return [&progress, name](double f) { progress(name, f); };
   };
 
   result.source = source_image(warp);
-  report("reference");
   Stopwatch stopwatch;
-  // The reference is a large share of the run: report from inside it.
-  result.reference = warp_image(warp, kReference, nullptr, [&](double f) {
-    if (progress) progress("reference", f);
-  });
+  result.reference = warp_image(warp, kReference, nullptr, stage("reference"));
   result.reference_seconds = stopwatch.seconds();
   const double megapixels = static_cast<double>(warp.width) * warp.height * 1e-6;
   for (const WarpVariant& variant : variants) {
-    report(variant.label());
+    const FractionProgress report = stage(variant.label());
     stopwatch.restart();
     std::int64_t evaluations = 0;
-    FloatImage image = warp_image(warp, variant, &evaluations);
+    FloatImage image = warp_image(warp, variant, &evaluations, report);
     Table2Row row;
     row.variant = variant;
     row.seconds = stopwatch.seconds();
@@ -165,25 +193,19 @@ Table2Result run_table2(const Table2Config& config, const StageProgress& progres
   if (has_second) {
     result.second = warp;
     result.second.width = config.second_width;
-    result.second.height = static_cast<int>(std::lround(static_cast<double>(warp.height) * config.second_width / warp.width));
-    const std::string stage = fmt::format("reference at {}x{}", result.second.width, result.second.height);
-    ++done;  // reported from inside the warp below
-    const FloatImage reference = warp_image(result.second, kReference, nullptr, [&](double f) {
-      if (progress) progress(stage, f);
-    });
-    for (std::size_t i = 0; i < variants.size(); ++i) {
-      report(fmt::format("{} at {}x{}", variants[i].label(), result.second.width, result.second.height));
-      result.rows[i].rmse_second = rmse(warp_image(result.second, variants[i]), reference);
-    }
-  } else {
-    done += 1.0 + static_cast<double>(variants.size());
+    result.second.height = second_height(config);
+    const std::string size = fmt::format("at {}x{}", result.second.width, result.second.height);
+    const FloatImage reference = warp_image(result.second, kReference, nullptr, stage("reference " + size));
+    for (std::size_t i = 0; i < variants.size(); ++i)
+      result.rows[i].rmse_second =
+          rmse(warp_image(result.second, variants[i], nullptr, stage(variants[i].label() + " " + size)), reference);
   }
 
   for (double t : config.figure_times) {
-    report(fmt::format("figure 5 at t = {:g}", t));
     WarpConfig timed = warp;
     timed.time = t;
-    result.timeline.push_back(warp_image(timed, WarpVariant{Integrator::rk4, Table2Config::kFigureSteps, 0}));
+    result.timeline.push_back(warp_image(timed, WarpVariant{Integrator::rk4, Table2Config::kFigureSteps, 0}, nullptr,
+                                         stage(fmt::format("figure 5 at t = {:g}", t))));
   }
   return result;
 }

@@ -45,6 +45,10 @@ PointSetStatistics measure_point_set(const PointSet& points, const PointSetStati
 
 // Stages one measure_point_set call reports.
 int point_statistics_stage_count(const PointSetStatisticsOptions& options);
+// The expected cost of each of those stages for a set of `points` points in `dimension` dimensions,
+// in their order (a model of the operations, calibrated by timing; for the progress line's ETA).
+std::vector<double> point_statistics_stage_weights(const PointSetStatisticsOptions& options, std::size_t points,
+                                                   int dimension);
 
 // CSV of `dfvn-sample stats`: input,set,dim,points, the nearest-neighbour and displacement columns of the
 // sampling stats (nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,median_displacement,

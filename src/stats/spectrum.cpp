@@ -1,5 +1,6 @@
 #include "dfvn/stats/spectrum.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -25,7 +26,26 @@ double PowerSpectrum::at(const int* k) const {
   return power[index];
 }
 
-PowerSpectrum power_spectrum(const std::vector<PointSet>& sets, int max_frequency, int threads) {
+double lattice_peak_frequency(double points, int dimension) {
+  return points > 0.0 && dimension > 0 ? std::pow(points, 1.0 / dimension) : 0.0;
+}
+
+int default_spectrum_frequency(double points, int dimension) {
+  const int cap = dimension == 2 ? kMaxDefaultFrequency2d : kMaxDefaultFrequency3d;
+  const double twice = std::ceil(2.0 * lattice_peak_frequency(points, dimension));
+  return static_cast<int>(std::clamp(twice, 1.0, static_cast<double>(cap)));
+}
+
+double expected_spectrum_cost(const std::vector<PointSet>& sets, int max_frequency) {
+  constexpr double kSineCosineCost = 30.0;  // per point and frequency; a discrepancy pair costs 1 per dimension
+  double cost = 0.0;
+  for (const PointSet& set : sets)
+    cost += std::pow(2.0 * max_frequency + 1.0, set.dimension) * static_cast<double>(set.size()) * kSineCosineCost;
+  return cost;
+}
+
+PowerSpectrum power_spectrum(const std::vector<PointSet>& sets, int max_frequency, int threads,
+                             const FractionProgress& progress) {
   if (sets.empty()) throw std::invalid_argument("power spectrum: no point sets");
   const int n_dim = sets.front().dimension;
   if (n_dim != 2 && n_dim != 3) throw std::invalid_argument("power spectrum: only 2D and 3D sets are supported");
@@ -40,9 +60,14 @@ PowerSpectrum power_spectrum(const std::vector<PointSet>& sets, int max_frequenc
   std::size_t total = 1;
   for (int a = 0; a < n_dim; ++a) total *= static_cast<std::size_t>(side);
   out.power.assign(total, 0.0);
+  double points = 0.0;
+  for (const auto& set : sets) points += static_cast<double>(set.size()) / static_cast<double>(sets.size());
+  out.lattice_peak = lattice_peak_frequency(points, n_dim);
+  std::size_t set_index = 0;
 
   for (const auto& set : sets) {
     const std::size_t n = set.size();
+    const std::size_t frequencies_before = set_index++ * total;
     // Unit-cube coordinates times 2 pi, axis-major for the inner loop.
     std::vector<double> phase_scale(n * static_cast<std::size_t>(n_dim));
     for (std::size_t j = 0; j < n; ++j)
@@ -65,6 +90,9 @@ PowerSpectrum power_spectrum(const std::vector<PointSet>& sets, int max_frequenc
         im -= std::sin(phase);
       }
       out.power[static_cast<std::size_t>(signed_index)] += (re * re + im * im) / static_cast<double>(n) / static_cast<double>(sets.size());
+      if (progress && omp_get_thread_num() == 0 && signed_index % 64 == 0)  // only the first thread reports
+        progress(static_cast<double>(frequencies_before + static_cast<std::size_t>(signed_index)) /
+                 static_cast<double>(total * sets.size()));
     }
   }
 
@@ -101,6 +129,7 @@ PowerSpectrum power_spectrum(const std::vector<PointSet>& sets, int max_frequenc
     const double variance = count > 1 ? squares[r] / (count - 1) : 0.0;
     if (mean2 > 0.0 && variance > kMinRelativeVariance * mean2) out.anisotropy_db[r] = 10.0 * std::log10(variance / mean2);
   }
+  if (progress) progress(1.0);
   return out;
 }
 
@@ -125,7 +154,9 @@ void write_spectrum_files(const std::string& prefix, const PowerSpectrum& spectr
                    spectrum.shell_counts[r]);
   write_file_atomically(prefix + ".csv", grid);
   write_file_atomically(prefix + "_radial.csv", radial);
-  draw_figure(PlotProgram::spectrum, prefix + ".png", {prefix + ".csv", prefix + "_radial.csv", std::to_string(spectrum.dimension)},
+  draw_figure(PlotProgram::spectrum, prefix + ".png",
+              {prefix + ".csv", prefix + "_radial.csv", std::to_string(spectrum.dimension),
+               fmt::format("{:.6g}", spectrum.lattice_peak)},
               log);
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "dfvn/core/point_set.hpp"
+#include "dfvn/core/progress.hpp"
 
 namespace dfvn {
 
@@ -21,6 +22,9 @@ struct PowerSpectrum {
   int dimension = 2;
   int max_frequency = 0;  // k in [-K, K]^N
   int realizations = 0;
+  // The peak frequency of a lattice as dense as the sets: n^(1/N) for their mean count n; a jittered or
+  // blue-noise set's power rises to it (the figure marks it).
+  double lattice_peak = 0.0;
   // (2K+1)^N values, axis 0 fastest: index sum_a (k_a + K) (2K+1)^a. P(0) = n (the DC term).
   std::vector<double> power;
   double at(const int* k) const;
@@ -38,7 +42,18 @@ struct PowerSpectrum {
 // Averages the periodograms of `sets` (each with the same dimension, 2 or 3, mapped from its domain to
 // the unit cube). OpenMP-parallel over frequencies; independent of the thread count. Throws
 // std::invalid_argument for other dimensions, an empty list or max_frequency < 1.
-PowerSpectrum power_spectrum(const std::vector<PointSet>& sets, int max_frequency, int threads);
+// `progress`: frequencies done over frequencies, over all sets.
+PowerSpectrum power_spectrum(const std::vector<PointSet>& sets, int max_frequency, int threads,
+                             const FractionProgress& progress = {});
+
+// The lattice peak n^(1/N) of `points` points in N dimensions, and the default largest frequency K: twice
+// it rounded up, so the figure shows the peak and what lies beyond it, but at most kMaxDefaultFrequency
+// (its sums cost (2K+1)^N n).
+double lattice_peak_frequency(double points, int dimension);
+int default_spectrum_frequency(double points, int dimension);
+// The expected cost of power_spectrum(sets, max_frequency, ...) in point_statistics_stage_weights' unit.
+double expected_spectrum_cost(const std::vector<PointSet>& sets, int max_frequency);
+inline constexpr int kMaxDefaultFrequency2d = 256, kMaxDefaultFrequency3d = 64;
 
 // PREFIX.csv: k0,..,k{N-1},power for every frequency; PREFIX_radial.csv: frequency,power,anisotropy_db,
 // frequencies (the shell's count), anisotropy_db empty where it is not defined. Then PREFIX.png (scripts/spectrum.gp, src/plot/gnuplot.hpp) when gnuplot is
