@@ -6,7 +6,7 @@
 // the same bits as `dfvn-sample --points`). Every point of the three is a function of its index alone, so
 // a later start computes points start.. by the same formulas, point by point: the Sobol digits of the
 // Gray-code walk, Owen-scrambled with owen_scramble, and the 20 bits below them from the same hashes
-// (sampling/sobol.cpp); the Halton digit permutations drawn from the same stream (sampling/halton.cpp);
+// (sampling/sobol.cpp); the Halton digit permutations of the library (halton_digit_permutations);
 // random_unit of Stream::random_points. tests/python/test_qmc.py checks that both ways give the same bits.
 #include <algorithm>
 #include <bit>
@@ -76,31 +76,12 @@ void sobol_from(const SobolSequence& sequence, std::uint64_t start, std::uint64_
   }
 }
 
-// As sampling/halton.cpp's digit_permutations: one permutation of the base's digits per significant
-// digit position, drawn from (seed, axis * 1024 + position, k).
-std::vector<std::vector<int>> halton_permutations(int base, int axis, std::uint64_t seed) {
-  const auto positions = static_cast<std::size_t>(std::floor(53.0 / std::log2(static_cast<double>(base))));
-  std::vector<std::vector<int>> permutations(positions);
-  for (std::size_t position = 0; position < positions; ++position) {
-    auto& p = permutations[position];
-    p.resize(static_cast<std::size_t>(base));
-    std::iota(p.begin(), p.end(), 0);
-    const std::uint64_t stream_index = static_cast<std::uint64_t>(axis) * 1024 + position;
-    for (int k = base - 1; k > 0; --k) {
-      const auto pick = static_cast<int>(random_bits(seed, Stream::halton_scramble, stream_index, static_cast<std::uint64_t>(k)) %
-                                         static_cast<std::uint64_t>(k + 1));
-      std::swap(p[static_cast<std::size_t>(k)], p[static_cast<std::size_t>(pick)]);
-    }
-  }
-  return permutations;
-}
-
 void halton_from(std::uint64_t start, std::uint64_t count, int d, bool scramble, std::uint64_t seed, int threads,
                  double* out) {
   for (int k = 0; k < d; ++k) {
     const int base = halton_base(k);
     const auto b = static_cast<std::uint64_t>(base);
-    const auto permutations = scramble ? halton_permutations(base, k, seed) : std::vector<std::vector<int>>{};
+    const auto permutations = scramble ? halton_digit_permutations(base, k, seed) : std::vector<std::vector<int>>{};
 #pragma omp parallel for schedule(static) num_threads(resolve_threads(threads)) if (worth_threads(count * static_cast<std::uint64_t>(d)))
     for (std::int64_t at = 0; at < static_cast<std::int64_t>(count); ++at) {
       const std::uint64_t i = start + static_cast<std::uint64_t>(at);

@@ -18,8 +18,15 @@ constexpr std::array<int, 16> kPrimes = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31,
 // Digit positions that still change a double in [0, 1): b^-m >= 2^-53, m = floor(53 / log2 b).
 int significant_digits(int base) { return static_cast<int>(std::floor(53.0 / std::log2(static_cast<double>(base)))); }
 
-// One permutation of {0..base-1} per digit position, drawn by Fisher-Yates from (seed, axis, position).
-std::vector<std::vector<int>> digit_permutations(int base, int axis, std::uint64_t seed) {
+}  // namespace
+
+int halton_base(int axis) {
+  if (axis < 0 || axis >= static_cast<int>(kPrimes.size()))
+    throw std::invalid_argument("Halton points are available in 1.." + std::to_string(kPrimes.size()) + " dimensions");
+  return kPrimes[static_cast<std::size_t>(axis)];
+}
+
+std::vector<std::vector<int>> halton_digit_permutations(int base, int axis, std::uint64_t seed) {
   std::vector<std::vector<int>> permutations(static_cast<std::size_t>(significant_digits(base)));
   for (std::size_t position = 0; position < permutations.size(); ++position) {
     auto& p = permutations[position];
@@ -35,14 +42,6 @@ std::vector<std::vector<int>> digit_permutations(int base, int axis, std::uint64
   return permutations;
 }
 
-}  // namespace
-
-int halton_base(int axis) {
-  if (axis < 0 || axis >= static_cast<int>(kPrimes.size()))
-    throw std::invalid_argument("Halton points are available in 1.." + std::to_string(kPrimes.size()) + " dimensions");
-  return kPrimes[static_cast<std::size_t>(axis)];
-}
-
 double radical_inverse(std::uint64_t index, int base) {
   const double inverse_base = 1.0 / base;
   double value = 0.0, scale = inverse_base;
@@ -55,7 +54,7 @@ PointSet halton_points(int dimension, std::uint64_t count, const Box& domain, bo
                        int threads) {
   std::vector<std::vector<std::vector<int>>> permutations;
   for (int k = 0; k < dimension; ++k)
-    permutations.push_back(scramble ? digit_permutations(halton_base(k), k, seed) : std::vector<std::vector<int>>{});
+    permutations.push_back(scramble ? halton_digit_permutations(halton_base(k), k, seed) : std::vector<std::vector<int>>{});
   PointSet out{dimension, Coordinates(count * static_cast<std::uint64_t>(dimension)), domain};
 #pragma omp parallel for schedule(static) num_threads(resolve_threads(threads)) if (worth_threads(out.coordinates.size()))
   for (std::int64_t i = 0; i < static_cast<std::int64_t>(count); ++i) {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "dfvn/core/point_set.hpp"
 
@@ -17,6 +18,10 @@ double radical_inverse(std::uint64_t index, int base);
 
 // The k-th prime (k = 0: 2); k < 16.
 int halton_base(int axis);
+// The scrambling of axis `axis` (base `base`): one permutation of {0..base-1} per digit position that
+// still changes a double (floor(53 / log2 base) of them), drawn by Fisher-Yates from (seed, axis,
+// position). Exposed so that a point i > 0 can be scrambled alone (the Python engines' fast_forward).
+std::vector<std::vector<int>> halton_digit_permutations(int base, int axis, std::uint64_t seed);
 
 // `count` Halton points (point 0 first) scaled to `domain`; dimension 1..16. Deterministic per seed,
 // independent of the thread count; with scramble = false the seed is not used.
