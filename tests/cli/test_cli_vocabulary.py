@@ -164,6 +164,18 @@ check(len(shared) >= 15, f"{len(shared)} names are shared: {' '.join(shared)}")
 problems = vocabulary_problems(per_section)
 check(not problems, "every shared name states its one meaning and unit" + "".join("\n     " + p for p in problems))
 
+# README's table "Options that mean the same everywhere" has a row for every shared name (--help and
+# --help-all aside).
+source_dir = os.environ.get("DFVN_SOURCE_DIR", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+readme = open(os.path.join(source_dir, "README.md"), encoding="utf-8").read()
+start = readme.find("## Options that mean the same everywhere")
+table = readme[start:readme.find("\n## ", start + 1)] if start >= 0 else ""
+rows = [line for line in table.split("\n") if line.startswith("| `")]
+for name in shared:
+    if name not in ("--help", "--help-all"):  # the paragraph above the table describes them
+        check(any(re.search(rf"`(-[a-zA-Z], )?{re.escape(name)}[` ,]", row.split("|")[1]) for row in rows),
+              f"README's table of shared options has a row for {name}")
+
 # The check itself fails on the departures it is there for: a shared name's unit changed in one
 # subcommand, a name newly shared without an entry, a second value type.
 for what, mutate in [
