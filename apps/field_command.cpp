@@ -27,6 +27,7 @@ struct FieldCommand : Subcommand {
   int dimension = 0;  // 0: the input's column count (3 with --diagnose)
   double frequency = 1.0;
   std::string noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
+  std::string field_kind{dfvn::to_string(dfvn::kDefaultFieldKind)};
   std::string domain = "free";
   std::string bound = "eq13";
   double boundary_width = 0.1;
@@ -54,6 +55,8 @@ struct FieldCommand : Subcommand {
         ->capture_default_str()
         ->check(kNoiseFrequency);
     add_noise_option(*cmd, noise);
+    add_field_kind_option(*cmd, field_kind,
+                          "With curl: --domain free or torus;\nthe columns f1..f{N-1} are then psi_1..psi_{N-1}");
     cmd->add_option("--domain", domain,
                     "free (R^N), torus ([0,1)^N: the basis's periodic form, period 1 along every axis, at about F\n"
                     "cycles per unit length), cube ([0,1]^N) or ball (its inscribed ball): f_1 turned into the\n"
@@ -99,6 +102,7 @@ struct FieldCommand : Subcommand {
   dfvn::FieldOptions field_options() const {
     dfvn::FieldOptions o{dfvn::parse_noise_basis(noise), frequency};
     o.periodic = domain == "torus";
+    o.kind = dfvn::parse_field_kind(field_kind);
     if (domain == "cube" || domain == "ball") {
       o.constraint = domain == "cube" ? dfvn::FieldConstraint::inside_cube : dfvn::FieldConstraint::inside_ball;
       o.transition_width = boundary_width;
@@ -109,6 +113,10 @@ struct FieldCommand : Subcommand {
 
   void run() {
     dfvn::check_outputs({{"--output", output}});
+    if (field_kind == "curl" && (domain == "cube" || domain == "ball"))
+      fail("--field curl has no boundary treatment (Bridson's boundaries are not implemented): --domain free or torus");
+    if (field_kind == "curl" && dimension > 3)
+      fail(fmt::format("--field curl is Bridson's curl noise in 2D and 3D; --dim {} needs --field dfvn", dimension));
     if (diagnose && (domain == "cube" || domain == "ball"))
       fail("--diagnose measures on uniform random points in R^N or on the torus: --domain free or torus");
     for (const CLI::Option* option : bound_options)

@@ -123,6 +123,17 @@ void add_noise_option(CLI::App& cmd, std::string& noise) {
       ->check(CLI::IsMember({"simplex", "turning-bands", "quintic-gradient"}));
 }
 
+CLI::Option* add_field_kind_option(CLI::App& cmd, std::string& field, const std::string& consequences) {
+  return cmd.add_option("--field", field,
+                        "Divergence-free field: dfvn (c = cross(grad f_1..f_{N-1}), Eq. 8, any N) or curl (Bridson et\n"
+                        "al. 2007's curl noise, 2D and 3D: c = (d psi/dy, -d psi/dx), in 3D c = curl (psi_1, psi_2, psi_3)\n"
+                        "of three independent functions of --noise; the same RMS |c| = 1 and --frequency). Curl noise has\n"
+                        "no reprojection (its streamlines are not intersections of iso-surfaces) and no boundary\n"
+                        "treatment here; in 2D it equals the dfvn field. " + consequences)
+      ->capture_default_str()
+      ->check(CLI::IsMember({"dfvn", "curl"}));
+}
+
 void refuse_options(CLI::App& cmd, const std::vector<std::pair<std::string, std::string>>& names_and_messages) {
   std::vector<std::pair<const CLI::Option*, std::string>> refused;
   for (const auto& [name, message] : names_and_messages)

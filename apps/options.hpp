@@ -40,6 +40,8 @@ CLI::Option* add_dimension_option(CLI::App& cmd, int& dimension, const std::stri
 
 // --noise: the basis of the N-1 noise functions.
 void add_noise_option(CLI::App& cmd, std::string& noise);
+// --field: which divergence-free field the noise makes, dfvn (the paper's) or curl (Bridson's curl noise).
+CLI::Option* add_field_kind_option(CLI::App& cmd, std::string& field, const std::string& consequences);
 
 // Names that no longer mean what they meant here (issue 24's one vocabulary), each with the line that
 // names the option to use instead: hidden from the help, and giving one (with a value or without)

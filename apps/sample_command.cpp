@@ -35,6 +35,8 @@ struct SampleCommand : Subcommand {
   std::string integrator = "rk4";
   std::string noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
   std::string reproject = "gauss-newton";
+  CLI::Option* reproject_option = nullptr;
+  std::string field_kind{dfvn::to_string(dfvn::kDefaultFieldKind)};
   std::string scramble = "owen";
   std::string stats_path = "-";
   std::string rdf_path;
@@ -141,7 +143,12 @@ struct SampleCommand : Subcommand {
         ->capture_default_str()
         ->check(kNoiseFrequency);
     add_noise_option(*cmd, noise);
-    cmd->add_option("--reproject", reproject, "CNJ reprojection after each step: none, newton (Eq. 12), gauss-newton (Eq. 10-11)")
+    add_field_kind_option(*cmd, field_kind,
+                          "CNJ traces along it; with curl:\n--reproject none (its default), --domain torus or "
+                          "--domain-mode drop, no --on");
+    reproject_option = cmd->add_option("--reproject", reproject,
+                    "CNJ reprojection after each step: none, newton (Eq. 12), gauss-newton (Eq. 10-11); with --field\n"
+                    "curl only none, its default")
         ->capture_default_str()
         ->check(CLI::IsMember({"none", "newton", "gauss-newton"}));
     domain_option = cmd->add_option("--domain", domain,
@@ -215,7 +222,15 @@ struct SampleCommand : Subcommand {
     config.scramble = dfvn::parse_scramble(scramble);
     config.cnj.trace.integrator = dfvn::parse_integrator(integrator);
     config.cnj.noise = dfvn::parse_noise_basis(noise);
+    config.cnj.field = dfvn::parse_field_kind(field_kind);
+    if (config.cnj.field == dfvn::FieldKind::curl && reproject_option->count() == 0) reproject = "none";
     config.cnj.trace.reprojection = dfvn::parse_reprojection(reproject);
+    if (config.cnj.field == dfvn::FieldKind::curl && config.dimension > 3)
+      throw std::invalid_argument(fmt::format(
+          "--field curl is Bridson's curl noise in 2D and 3D; --dim {} needs --field dfvn", config.dimension));
+    if (config.cnj.field == dfvn::FieldKind::curl && config.cnj.trace.reprojection != dfvn::Reprojection::none)
+      throw std::invalid_argument("--field curl has no reprojection (its streamlines are not intersections of "
+                                  "iso-surfaces): --reproject " + reproject + " needs --field dfvn");
     // Options that only mean something at a boundary put CNJ in the cube when no domain is named.
     const bool asks_for_a_boundary =
         domain_mode == "drop" || bound_options[0]->count() > 0 || bound_options[1]->count() > 0;
@@ -230,6 +245,8 @@ struct SampleCommand : Subcommand {
                                     (config.cnj.domain == dfvn::CnjDomain::torus ? "the torus has no boundary"
                                                                                   : "drop mode traces the free field"));
     config.on = dfvn::parse_surface(on);
+    if (config.cnj.field == dfvn::FieldKind::curl && config.on != dfvn::Surface::none)
+      throw std::invalid_argument("--field curl has no surface form: --on " + on + " needs --field dfvn");
     if (config.on == dfvn::Surface::sphere && methods_option->count() == 0) methods = "cnj,random";
     config.methods.clear();
     for (const auto& name : CLI::detail::split(methods, ',')) {

@@ -61,6 +61,20 @@ void BM_Field(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
+// One evaluation of Bridson's curl noise (--field curl, 2D and 3D), per basis, beside BM_Field.
+template <int N>
+void BM_CurlField(benchmark::State& state) {
+  const NoiseBasis basis = kAllNoiseBases[state.range(0)];
+  state.SetLabel(std::string(to_string(basis)));
+  FieldOptions options{basis, 1.0};
+  options.kind = FieldKind::curl;
+  const DfvnField<N> field(1, options);
+  const auto points = bench_points<N>(4096);
+  std::size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(field.evaluate(points[i++ & 4095]));
+  state.SetItemsProcessed(state.iterations());
+}
+
 // One CNJ point of the main job: one RK4 step with Gauss-Newton reprojection (TraceOptions's default,
 // and conformant CNJ's).
 template <int N>
@@ -91,6 +105,8 @@ constexpr int kLastBasis = static_cast<int>(std::size(kAllNoiseBases)) - 1;
 DFVN_BENCH_ALL_DIMENSIONS(BM_NoiseFused);
 DFVN_BENCH_ALL_DIMENSIONS(BM_NoiseSeparate);
 DFVN_BENCH_ALL_DIMENSIONS(BM_Field, ->DenseRange(0, kLastBasis));
+BENCHMARK_TEMPLATE(BM_CurlField, 2)->DenseRange(0, kLastBasis);
+BENCHMARK_TEMPLATE(BM_CurlField, 3)->DenseRange(0, kLastBasis);
 DFVN_BENCH_ALL_DIMENSIONS(BM_Rk4GaussNewtonStep, ->DenseRange(0, kLastBasis));
 
 // CNJ on the 6^7 paper lattice (279,936 points), all threads, default basis: the 2 s target.

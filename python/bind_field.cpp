@@ -18,8 +18,13 @@ namespace {
 // The field's options as the command line's `field` takes them: domain 'free', 'torus', 'cube' or 'ball';
 // the bound and its width only for a bounded one.
 FieldOptions field_options(double frequency, const std::string& noise, const std::string& domain,
-                           const std::optional<std::string>& bound, const std::optional<double>& boundary_width) {
+                           const std::optional<std::string>& bound, const std::optional<double>& boundary_width,
+                           const std::string& field) {
   FieldOptions o{parse_noise_basis(noise), frequency};
+  o.kind = parse_field_kind(field);
+  if (o.kind == FieldKind::curl && domain != "free" && domain != "torus")
+    throw py::value_error("field 'curl' has no boundary treatment (Bridson's boundaries are not implemented): "
+                          "domain 'free' or 'torus'");
   const bool bounded = domain == "cube" || domain == "ball";
   if (!bounded && domain != "free" && domain != "torus")
     throw py::value_error("unknown domain '" + domain + "' (allowed: free, torus, cube, ball)");
@@ -36,12 +41,12 @@ FieldOptions field_options(double frequency, const std::string& noise, const std
 
 py::tuple field(const PointArray& points, std::uint64_t seed, double frequency, const std::string& noise,
                 const std::string& domain, const std::optional<std::string>& bound,
-                const std::optional<double>& boundary_width, int threads) {
+                const std::optional<double>& boundary_width, const std::string& field_kind, int threads) {
   const PointRows in = point_rows(points, kMinDimension, kMaxDimension);
   FieldQuery query;
   query.dimension = in.dimension;
   query.seed = seed;
-  query.field = field_options(frequency, noise, domain, bound, boundary_width);
+  query.field = field_options(frequency, noise, domain, bound, boundary_width, field_kind);
   query.threads = threads;
   py::array_t<double> velocity = new_array(in.rows, in.dimension);
   py::array_t<double> values = new_array(in.rows, in.dimension - 1);
@@ -55,16 +60,19 @@ py::tuple field(const PointArray& points, std::uint64_t seed, double frequency, 
 }
 
 py::array_t<double> trace(const PointArray& points, double time, std::uint64_t seed, double frequency,
-                          const std::string& noise, const std::string& integrator, const std::string& reprojection,
-                          int steps, const std::string& domain, const std::optional<std::string>& bound,
-                          const std::optional<double>& boundary_width, int threads) {
+                          const std::string& noise, const std::string& integrator,
+                          const std::optional<std::string>& reprojection, int steps, const std::string& domain,
+                          const std::optional<std::string>& bound, const std::optional<double>& boundary_width,
+                          const std::string& field_kind, int threads) {
   const PointRows in = point_rows(points, kMinDimension, kMaxDimension);
   TracePointsQuery query;
   query.dimension = in.dimension;
   query.seed = seed;
-  query.field = field_options(frequency, noise, domain, bound, boundary_width);
+  query.field = field_options(frequency, noise, domain, bound, boundary_width, field_kind);
   query.trace.integrator = parse_integrator(integrator);
-  query.trace.reprojection = parse_reprojection(reprojection);
+  // Not given: gauss-newton, or none for curl noise, which has no reprojection (the tracer refuses one).
+  query.trace.reprojection = parse_reprojection(
+      reprojection.value_or(query.field.kind == FieldKind::curl ? "none" : "gauss-newton"));
   query.trace.steps = steps;
   query.time = time;
   query.threads = threads;
@@ -83,7 +91,7 @@ void bind_field(py::module_& module) {
   using namespace pybind11::literals;
   module.def("field", &field, "points"_a, py::kw_only(), "seed"_a = 1, "frequency"_a = 1.0,
              "noise"_a = std::string(to_string(kDefaultNoiseBasis)), "domain"_a = "free", "bound"_a = py::none(),
-             "boundary_width"_a = py::none(), "threads"_a = 0,
+             "boundary_width"_a = py::none(), "field"_a = std::string(to_string(kDefaultFieldKind)), "threads"_a = 0,
              R"(The divergence-free field c(x) = cross(grad f_1, ..., grad f_{N-1}) (Eq. 8) at each point.
 
 points: (n, N) array, N = 2..8 (converted to float64 C order if it is not already).
@@ -93,18 +101,23 @@ domain: 'free' (R^N), 'torus' (the basis's periodic form: period 1 along every a
 `frequency` cycles per unit length; turning-bands only), 'cube' ([0,1]^N) or 'ball' (its inscribed
 ball): f_1 turned into the boundary function so that c is tangent to the boundary, by bound 'eq13'
 (the paper's Eq. 13, the default) or 'ramp' (Bridson et al. 2007) over boundary_width (length units,
-(0, 1/4], default 0.1). threads: 0 = all cores (the result never depends on it).
+(0, 1/4], default 0.1). field: 'dfvn' (Eq. 8, the default) or 'curl' (Bridson et al. 2007's curl
+noise, N = 2 and 3 only: c = (d psi/dy, -d psi/dx), in 3D c = curl (psi_1, psi_2, psi_3) of three
+independent functions of the basis; the same RMS |c| = 1 and frequency; domain 'free' or 'torus'; f
+then holds psi_1..psi_{N-1}). threads: 0 = all cores (the result never depends on it).
 
 Returns (c, f): c (n, N), the field vector (RMS |c| = 1), and f (n, N-1), the noise values f_i(x);
 the same numbers as `dfvn-sample field` writes.)");
   module.def("trace", &trace, "points"_a, "t"_a, py::kw_only(), "seed"_a = 1, "frequency"_a = 1.0,
              "noise"_a = std::string(to_string(kDefaultNoiseBasis)), "integrator"_a = "rk4",
-             "reprojection"_a = "gauss-newton", "steps"_a = 1, "domain"_a = "free", "bound"_a = py::none(),
-             "boundary_width"_a = py::none(), "threads"_a = 0,
+             "reprojection"_a = py::none(), "steps"_a = 1, "domain"_a = "free", "bound"_a = py::none(),
+             "boundary_width"_a = py::none(), "field"_a = std::string(to_string(kDefaultFieldKind)), "threads"_a = 0,
              R"(Trace each point along the field for time t (Algorithm 1); returns where they end, (n, N).
 
 integrator: 'euler' or 'rk4'; reprojection onto the iso-contours of the f_i after every step:
-'none', 'newton' (Eq. 12) or 'gauss-newton' (Eq. 10-11); steps: M, each of length t / M. The field
+'none', 'newton' (Eq. 12) or 'gauss-newton' (Eq. 10-11); default 'gauss-newton', and 'none' with
+field='curl', which has no reprojection (its streamlines are not intersections of iso-surfaces; any
+other is refused); steps: M, each of length t / M. The field
 options are those of dfvn.field: on the torus the ends are wrapped into [0,1)^N; in the cube or the
 ball a trace that a long step carries out is traced again with 2, 4, ..., 64 times the steps (or
 stays at its start). t < 0 traces backwards; a trace reaching the edge of the noise domain stops

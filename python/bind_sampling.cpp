@@ -31,13 +31,14 @@ struct SampleArguments {
   double cycles_per_spacing = 0.0;
   double step_scale = 0.0;
   std::string integrator;
-  std::string reprojection;
+  std::optional<std::string> reprojection;  // None: gauss-newton, or none for field 'curl'
   int steps = 1;
   std::optional<std::string> domain;
   std::string domain_mode;
   std::optional<std::string> bound;
   int threads = 0;
   double max_memory_gib = 0.0;
+  std::string field = "dfvn";
 };
 
 // The dimension's name in messages is the caller's (the engines' `d`, sample's `dim`): python/dfvn
@@ -66,7 +67,16 @@ SampleConfig sample_config(const SampleArguments& a) {
   config.cnj.frequency = a.cycles_per_spacing;
   config.cnj.step_scale = a.step_scale;
   config.cnj.trace.integrator = parse_integrator(a.integrator);
-  config.cnj.trace.reprojection = parse_reprojection(a.reprojection);
+  config.cnj.field = parse_field_kind(a.field);
+  // As on the command line: curl noise has no reprojection, so none is its default (and only choice).
+  config.cnj.trace.reprojection =
+      parse_reprojection(a.reprojection.value_or(config.cnj.field == FieldKind::curl ? "none" : "gauss-newton"));
+  if (config.cnj.field == FieldKind::curl && config.cnj.trace.reprojection != Reprojection::none)
+    throw py::value_error("field 'curl' has no reprojection (its streamlines are not intersections of "
+                          "iso-surfaces): reprojection '" + *a.reprojection + "' needs field 'dfvn'");
+  if (config.cnj.field == FieldKind::curl && a.d > 3)
+    throw py::value_error("field 'curl' is Bridson's curl noise in 2D and 3D; d = " + std::to_string(a.d) +
+                          " needs field 'dfvn'");
   config.cnj.trace.steps = a.steps;
   config.cnj.domain_mode = parse_domain_mode(a.domain_mode);
   // As on the command line: without a domain, drop mode or a bound put CNJ in the cube.
@@ -143,6 +153,7 @@ void bind_sampling(py::module_& module) {
   defaults["reprojection"] = std::string(to_string(cnj.trace.reprojection));
   defaults["steps"] = CnjOptions::kStepsByDomainMode;
   defaults["domain_mode"] = std::string(to_string(cnj.domain_mode));
+  defaults["field"] = std::string(to_string(cnj.field));
   defaults["min_d"] = kMinDimension;
   defaults["max_d"] = kMaxDimension;
   module.attr("_cnj_defaults") = defaults;
@@ -150,12 +161,12 @@ void bind_sampling(py::module_& module) {
     return [f](const std::string& method, int d, std::optional<int> grid, std::optional<std::uint64_t> n,
                std::uint64_t seed, const std::string& protocol, bool scramble, double radius, int ncandidates,
                const std::string& noise, double cycles_per_spacing, double step_scale, const std::string& integrator,
-               const std::string& reprojection, int steps, const std::optional<std::string>& domain,
+               const std::optional<std::string>& reprojection, int steps, const std::optional<std::string>& domain,
                const std::string& domain_mode, const std::optional<std::string>& bound, int threads,
-               double max_memory_gib) {
+               double max_memory_gib, const std::string& field) {
       return f(SampleArguments{method, d, grid, n, seed, protocol, scramble, radius, ncandidates, noise,
                                cycles_per_spacing, step_scale, integrator, reprojection, steps, domain, domain_mode,
-                               bound, threads, max_memory_gib});
+                               bound, threads, max_memory_gib, field});
     };
   };
   const char* doc = "Internal: one point set as `dfvn-sample --points` makes it (python/dfvn/qmc.py calls it).";
@@ -164,10 +175,10 @@ void bind_sampling(py::module_& module) {
                "seed"_a = 1, "protocol"_a = "unit", "scramble"_a = true, "radius"_a = 0.0, "ncandidates"_a = 30,
                "noise"_a = std::string(to_string(cnj.noise)), "cycles_per_spacing"_a = cnj.frequency,
                "step_scale"_a = cnj.step_scale, "integrator"_a = std::string(to_string(cnj.trace.integrator)),
-               "reprojection"_a = std::string(to_string(cnj.trace.reprojection)),
+               "reprojection"_a = py::none(),
                "steps"_a = CnjOptions::kStepsByDomainMode, "domain"_a = py::none(),
                "domain_mode"_a = std::string(to_string(cnj.domain_mode)), "bound"_a = py::none(), "threads"_a = 0,
-               "max_memory_gib"_a = 0.0, doc);
+               "max_memory_gib"_a = 0.0, "field"_a = std::string(to_string(cnj.field)), doc);
   }
 }
 

@@ -21,7 +21,7 @@ std::string python_message(std::string message) {
       {"--dim", "dim"},           {"--grid", "grid"},           {"-n", "n"},
       {"--seed", "seed"},         {"--threads", "threads"},     {"--methods", "method"},
       {"--frequency", "frequency"}, {"--cycles-per-spacing", "cycles_per_spacing"}, {"--step-scale", "step_scale"}, {"--steps", "steps"},
-      {"--noise", "noise"},       {"--integrator", "integrator"}, {"--reproject", "reprojection"},
+      {"--noise", "noise"},       {"--integrator", "integrator"}, {"--reproject", "reprojection"}, {"--field", "field"},
       {"--protocol", "protocol"}, {"--scramble", "scramble"},   {"--pds-radius", "radius"},
       {"--pds-candidates", "ncandidates"}, {"--max-memory GIB", "max_memory_gib"},
       {"--max-memory", "max_memory_gib"}, {"--domain-side", "domain_side"}, {"--rdf-max", "r_max"},

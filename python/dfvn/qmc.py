@@ -268,8 +268,11 @@ class CNJ(_SetEngine):
     noise's cycles per lattice spacing (the field's cycles per unit length are cycles_per_spacing / spacing,
     `dfvn-sample`'s field_frequency); `frequency` is refused, since in dfvn it means cycles per unit length.
     step_scale (default {step_scale}): the trace time in mean spacings. integrator (default '{integrator}'),
-    reprojection (default '{reprojection}'): how points are traced along the field. steps (default 0: the
-    domain's count, 2 on the torus and 1 in a bounded domain).
+    reprojection (default '{reprojection}'; 'none' with field='curl'): how points are traced along the
+    field. steps (default 0: the domain's count, 2 on the torus and 1 in a bounded domain).
+    field (default '{field}'): the field traced along, 'dfvn' (the paper's) or 'curl' (Bridson et al.
+    2007's curl noise, d = 2 and 3 only, as `dfvn-sample sample --field curl`): it has no reprojection
+    (any other than 'none' is refused) and no boundary (the torus or domain_mode='drop').
     domain (default None: the torus, or the cube with drop mode or a bound): 'torus' ([0,1)^d with
     opposite faces identified, every point kept), 'cube' or 'ball'. domain_mode (default 'conformant'):
     'conformant' (the field bounded by the domain, every point kept) or 'drop' (the free field, points
@@ -286,14 +289,14 @@ class CNJ(_SetEngine):
 
     def __init__(self, d, *, seed=None, protocol="unit", noise=_DEFAULTS["noise"],
                  cycles_per_spacing=_DEFAULTS["cycles_per_spacing"], step_scale=_DEFAULTS["step_scale"],
-                 integrator=_DEFAULTS["integrator"], reprojection=_DEFAULTS["reprojection"], steps=_DEFAULTS["steps"],
+                 integrator=_DEFAULTS["integrator"], reprojection=None, steps=_DEFAULTS["steps"],
                  domain=None, domain_mode=_DEFAULTS["domain_mode"], bound=None, threads=0, max_memory_gib=0.0,
-                 **refused):
+                 field=_DEFAULTS["field"], **refused):
         _refuse(self._name, refused)
         super().__init__(d, seed=seed, protocol=protocol, threads=threads, max_memory_gib=max_memory_gib,
                          noise=noise, cycles_per_spacing=float(cycles_per_spacing), step_scale=float(step_scale),
                          integrator=integrator, reprojection=reprojection, steps=_count(steps, "steps", -(1 << 31)),
-                         domain=domain, domain_mode=domain_mode, bound=bound)
+                         domain=domain, domain_mode=domain_mode, bound=bound, field=field)
 
     def _why_requested(self, requested, k):
         if self._options["domain"] == "ball":
@@ -380,8 +383,9 @@ ENGINES = {"cnj": CNJ, "jitter-matched": JitterMatched, "jitter": Jitter, "pds":
 def sample(method, dim, *, grid=None, n=None, seed=1, protocol="unit", scramble=True, radius=0.0, ncandidates=30,
            noise=_DEFAULTS["noise"], cycles_per_spacing=_DEFAULTS["cycles_per_spacing"],
            step_scale=_DEFAULTS["step_scale"], integrator=_DEFAULTS["integrator"],
-           reprojection=_DEFAULTS["reprojection"], steps=_DEFAULTS["steps"], domain=None,
-           domain_mode=_DEFAULTS["domain_mode"], bound=None, threads=0, max_memory_gib=0.0, **refused):
+           reprojection=None, steps=_DEFAULTS["steps"], domain=None,
+           domain_mode=_DEFAULTS["domain_mode"], bound=None, threads=0, max_memory_gib=0.0, field=_DEFAULTS["field"],
+           **refused):
     """One point set as an (n, dim) float64 array, the same bits as `dfvn-sample --points DIR --format npy`:
     the first set (or the first points) of the method's engine (dfvn.CNJ, dfvn.Sobol, ...).
 
@@ -396,7 +400,7 @@ def sample(method, dim, *, grid=None, n=None, seed=1, protocol="unit", scramble=
     scramble (default True): Owen-scrambled Sobol, digit-permuted Halton (False: neither). radius
     (default 0: the protocol's), ncandidates (default 30): Poisson disk's. noise, cycles_per_spacing,
     step_scale, integrator, reprojection, steps (default 0: the domain's count), domain (default None),
-    domain_mode (default 'conformant'), bound (default None): CNJ's options, defaults and meaning as
+    domain_mode (default 'conformant'), bound (default None), field (default 'dfvn'): CNJ's options, defaults and meaning as
     dfvn.CNJ's (`frequency` is refused: it is now cycles_per_spacing). threads (default 0: all cores; the
     result never depends on it). max_memory_gib (default 0: 80% of the machine's memory): a larger set
     raises ValueError before any work."""
@@ -410,7 +414,7 @@ def sample(method, dim, *, grid=None, n=None, seed=1, protocol="unit", scramble=
         n = _count(n, "n", 1)
     engine = ENGINES[method]
     cnj = dict(noise=noise, cycles_per_spacing=cycles_per_spacing, step_scale=step_scale, integrator=integrator,
-               reprojection=reprojection, steps=steps, domain=domain, domain_mode=domain_mode, bound=bound)
+               reprojection=reprojection, steps=steps, domain=domain, domain_mode=domain_mode, bound=bound, field=field)
     pds = dict(radius=radius, ncandidates=ncandidates)
     if issubclass(engine, _Sequence):
         # The count and the domain under the protocol (Sobol under 'paper' lives on [0, 0.1 K]^dim);

@@ -282,6 +282,7 @@ PointSet generate_points(const SampleConfig& config, const MethodPlan& plan, Met
       facts.kept_at_site = r.kept_at_site;
       result.notes = fmt::format("{} noise; {} domain; {}", to_string(config.cnj.noise), to_string(config.cnj.domain),
                                  to_string(config.cnj.domain_mode));
+      if (config.cnj.field == FieldKind::curl) result.notes += "; curl noise field, no reprojection";
       if (config.cnj.domain != CnjDomain::ball)  // the ball's clipped lattice has no K^N neighbour structure
         result.displacement = summarize_lattice_displacements(config.dimension, config.grid,
                                                               cnj_lattice(lattice, config.cnj.domain).spacing(),

@@ -8,13 +8,33 @@
 
 #include <fmt/format.h>
 
+#include "dfvn/core/hash.hpp"
 #include "dfvn/field/cross_product.hpp"
 #include "dfvn/noise/noise_domain.hpp"
 
 namespace dfvn {
 
+FieldKind parse_field_kind(std::string_view name) {
+  if (name == "dfvn") return FieldKind::dfvn;
+  if (name == "curl") return FieldKind::curl;
+  throw std::invalid_argument(fmt::format("unknown field '{}': dfvn or curl", name));
+}
+
+std::string_view to_string(FieldKind kind) {
+  switch (kind) {
+    case FieldKind::dfvn: return "dfvn";
+    case FieldKind::curl: return "curl";
+  }
+  throw std::invalid_argument("unknown field kind");
+}
+
 void FieldOptions::validate() const {
   check_noise_frequency(frequency);
+  parse_field_kind(to_string(kind));  // an unknown enum value throws
+  if (kind == FieldKind::curl && constraint != FieldConstraint::none)
+    throw std::invalid_argument(fmt::format(
+        "curl noise has no boundary treatment here: --field curl takes no {} constraint (use the free field or the torus)",
+        to_string(constraint)));
   parse_bound(to_string(bound));  // an unknown enum value throws
   if (periodic && constraint != FieldConstraint::none)
     throw std::invalid_argument(fmt::format("the torus has no boundary: a periodic field takes no {} constraint",
@@ -57,6 +77,42 @@ double torus_amplitude(const NoiseFunctions<N>& noise) {
   return std::pow(mean, -0.5 / (N - 1));
 }
 
+// Curl noise from the gradients of its functions in the basis's units: 2D c = (d psi/dy, -d psi/dx),
+// 3D c = curl (psi_1, psi_2, psi_3) with psi_3's gradient g3.
+template <int N>
+Vec<N> curl_of(const std::array<Vec<N>, N - 1>& g, const Vec<N>& g3) {
+  Vec<N> c;
+  if constexpr (N == 2) {
+    c << g[0][1], -g[0][0];
+  } else if constexpr (N == 3) {
+    c << g3[1] - g[1][2], g[0][2] - g3[0], g[1][0] - g[0][1];
+  } else {
+    (void)g, (void)g3;
+    c.setConstant(std::numeric_limits<double>::quiet_NaN());
+  }
+  return c;
+}
+
+// The seed of psi_3's basis instance: independent of the seed's own functions ("curl" in ASCII).
+std::uint64_t curl_third_seed(std::uint64_t seed) { return hash_combine(mix64(seed), 0x6375726cULL); }
+
+// A with RMS |A curl n| = 1: the mean of |curl n|^2 over 2^14 Kronecker points in [0, side)^N (the
+// basis's units; side 1 on the torus), A = mean^(-1/2) since c is linear in A.
+template <int N>
+double curl_amplitude(const NoiseFunctions<N>& noise, const NoiseFunctions<N>& third, double side) {
+  constexpr int kPoints = 1 << 14;
+  const Vec<N> alpha = kronecker_alpha<N>();
+  double sum = 0.0;  // in point order: deterministic
+  for (int k = 0; k < kPoints; ++k) {
+    Vec<N> x;
+    for (int j = 0; j < N; ++j) x[j] = side * std::fmod(0.5 + k * alpha[j], 1.0);
+    sum += curl_of<N>(noise.evaluate(x).gradient, third.evaluate(x).gradient[0]).squaredNorm();
+  }
+  const double mean = sum / kPoints;
+  if (!(mean > 0.0 && std::isfinite(mean))) throw std::logic_error("curl noise field without motion");
+  return 1.0 / std::sqrt(mean);
+}
+
 }  // namespace
 
 template <int N>
@@ -71,6 +127,20 @@ DfvnField<N>::DfvnField(std::uint64_t seed, const FieldOptions& options)
   if (options.constraint != FieldConstraint::none)
     constraint_ =
         std::make_shared<const ConstraintFunction<N>>(options.constraint, options.transition_width, options.bound);
+  if (options.kind == FieldKind::curl) {
+    if constexpr (N > 3) {
+      throw std::invalid_argument(
+          fmt::format("--field curl is Bridson's curl noise in 2D and 3D; dimension {} needs --field dfvn", N));
+    } else if constexpr (N == 3) {
+      // 64 cycles per side of the measuring box (one cycle = 2 pi / k_eff in the basis's units).
+      curl_noise_ = options.periodic ? make_periodic_noise_functions<N>(options.noise, curl_third_seed(seed), options.frequency)
+                                     : make_noise_functions<N>(options.noise, curl_third_seed(seed));
+      amplitude_ = curl_amplitude<N>(*noise_, *curl_noise_,
+                                     options.periodic ? 1.0 : 64.0 * 2.0 * std::numbers::pi / noise_->wavenumber());
+    }
+    // N == 2: c = (d psi/dy, -d psi/dx) is cross<2>(grad psi), the 2D DFVN field, so the amplitude is
+    // the basis's (or on the torus the measured one) as for --field dfvn.
+  }
   // The noise domain bounds F x; each basis is safe for its own scale s = 2 pi F / k_eff there
   // (noise/noise_domain.hpp), which the checks of the tests assert.
   assert(options.periodic || (scale_ > 0.0 && scale_ <= 2.0 * options.frequency));
@@ -103,8 +173,28 @@ FieldSample<N> DfvnField<N>::evaluate_functions(const Vec<N>& x) const {
 template <int N>
 FieldSample<N> DfvnField<N>::evaluate(const Vec<N>& x) const {
   FieldSample<N> out = evaluate_functions(x);
-  out.velocity = cross<N>(out.gradient);  // Eq. (8)
+  if constexpr (N == 3) {
+    if (curl_noise_) {
+      const Vec<N> g3 = amplitude_ * curl_noise_->evaluate(scale_ * x).gradient[0];
+      out.velocity = curl_of<N>(out.gradient, g3);  // Bridson et al. 2007, curl psi
+      return out;
+    }
+  }
+  // Eq. (8); in 2D also curl noise's (d psi/dy, -d psi/dx)
+  out.velocity = cross<N>(out.gradient);
   return out;
+}
+
+template <int N>
+std::array<double, 3> DfvnField<N>::curl_potential(const Vec<N>& x) const {
+  if (options_.kind != FieldKind::curl || N > 3) throw std::logic_error("curl_potential of a field that is no curl noise");
+  const FieldSample<N> functions = evaluate_functions(x);
+  std::array<double, 3> psi{functions.value[0], 0.0, 0.0};
+  if constexpr (N == 3) {
+    psi[1] = functions.value[1];
+    psi[2] = amplitude_ / scale_ * curl_noise_->evaluate(scale_ * x).value[0];
+  }
+  return psi;
 }
 
 template class DfvnField<2>;

@@ -19,6 +19,17 @@ struct FieldSample {
   std::array<Vec<N>, N - 1> gradient;    // grad f_i(x)
 };
 
+// dfvn: the paper's field, c = cross(grad f_1, ..., grad f_{N-1}) (Eq. 8), any N, with reprojection.
+// curl: Bridson, Hourihan and Nordenstam's curl noise (2007), 2D and 3D only: c = (d psi/dy, -d psi/dx)
+// of one function of the basis in 2D, c = curl (psi_1, psi_2, psi_3) of three independent functions in
+// 3D, from the basis's analytic gradients. Its streamlines are not intersections of iso-surfaces, so no
+// reprojection exists for it (the tracer refuses one), and it has no boundary treatment here (no
+// constraint); the torus takes the basis's periodic form.
+enum class FieldKind { dfvn, curl };
+inline constexpr FieldKind kDefaultFieldKind = FieldKind::dfvn;
+FieldKind parse_field_kind(std::string_view name);  // "dfvn" | "curl"; throws std::invalid_argument
+std::string_view to_string(FieldKind kind);
+
 struct FieldOptions {
   NoiseBasis noise = kDefaultNoiseBasis;
   // Cycles per unit length, the same for every basis: one cycle is 2 pi / k_eff long, where
@@ -33,9 +44,12 @@ struct FieldOptions {
   // The torus [0,1)^N: the basis's periodic form (period 1 along every axis, at about `frequency` cycles
   // per unit length; noise/noise_functions.hpp), with no constraint.
   bool periodic = false;
+  // Which field the functions make (FieldKind above); curl needs N <= 3 and no constraint.
+  FieldKind kind = kDefaultFieldKind;
 
   // throws std::invalid_argument unless the frequency is finite and positive, the constraint's
-  // transition width is in (0, 1/4] and a periodic field has a periodic basis and no constraint
+  // transition width is in (0, 1/4], a periodic field has a periodic basis and no constraint, and a
+  // curl field has no constraint (its dimension is checked by DfvnField<N>)
   void validate() const;
 };
 
@@ -52,6 +66,17 @@ struct FieldOptions {
 // points of a Kronecker sequence (x_k = frac(1/2 + k alpha), Roberts' R_N alpha), which integrates a
 // smooth periodic function far more accurately than random points (the field's own divergence and
 // speed tests measure the result on uniform random points).
+// Curl noise (FieldKind::curl): psi_i(x) = (A / s) n_i(s x) with the same s, so the frequency means
+// the same; c = curl psi = A (curl n)(s x). In 2D |c| = |grad psi|, which is exactly the 2D DFVN
+// field's magnitude, so A is the basis's own amplitude (derived, not measured). In 3D the three
+// functions come from two instances of the basis (n_1, n_2 of `seed`; n_3 the first function of an
+// independent seed derived from it), and A is measured per seed: A = (mean |curl n|^2)^(-1/2) over the
+// 2^14 Kronecker points above, spread over a box of 64 cycles per side (on the torus: over the torus).
+// For isotropic independent functions E|curl n|^2 = 2 E|grad n|^2 (each n_i contributes two of its
+// three gradient components, the cross terms have mean 0); the quintic gradient basis and simplex are
+// not exactly isotropic and turning bands is isotropic only over seeds, which is why it is measured.
+// The tests check RMS |c| within 3% of 1 on 10^5 uniform random points for every basis.
+// evaluate() fills value/gradient with psi_1..psi_{N-1} (for the diagnosis' k_eff), velocity with c.
 template <int N>
 class DfvnField {
  public:
@@ -67,6 +92,10 @@ class DfvnField {
   // The f_i and their gradients only, for reprojection, which needs no velocity: the velocity is
   // left NaN, and cross<N>(gradient) gives it later, bit for bit as evaluate would have.
   FieldSample<N> evaluate_functions(const Vec<N>& x) const;
+  // Curl noise only (kind() == curl, N <= 3): the vector potential (psi_1, psi_2, psi_3) at x, in 2D
+  // (psi, 0, 0); c is its curl (the tests compare c with its central differences). Throws
+  // std::logic_error for a dfvn field.
+  std::array<double, 3> curl_potential(const Vec<N>& x) const;
   bool in_domain(const Vec<N>& x) const;
   void check_in_domain(const Vec<N>& x, std::string_view what) const;
   Vec<N> velocity(const Vec<N>& x) const { return evaluate(x).velocity; }
@@ -78,10 +107,12 @@ class DfvnField {
   double scale() const { return scale_; }          // s: x -> s x in the basis's own units
   double amplitude() const { return amplitude_; }  // A
   double wavenumber() const { return noise_->wavenumber(); }  // k_eff of the raw basis
+  FieldKind kind() const { return options_.kind; }
   std::uint64_t seed() const { return seed_; }
 
  private:
   std::shared_ptr<const NoiseFunctions<N>> noise_;  // shared: a field is cheap to copy
+  std::shared_ptr<const NoiseFunctions<N>> curl_noise_;  // curl in 3D: psi_3 is its first function
   std::shared_ptr<const ConstraintFunction<N>> constraint_;  // null: the free field
   FieldOptions options_;
   std::uint64_t seed_;

@@ -163,6 +163,10 @@ template <int N>
 Tracer<N>::Tracer(const DfvnField<N>& field, const TraceOptions& options)
     : field_(field), options_(options) {
   options_.validate();
+  if (field.kind() == FieldKind::curl && options_.reprojection != Reprojection::none)
+    throw std::invalid_argument(
+        "curl noise has no reprojection (its streamlines are not intersections of iso-surfaces): "
+        "use reprojection none with --field curl");
   auto select = [&]<Integrator I>() -> TraceFunction {
     switch (options_.reprojection) {
       case Reprojection::none: return &trace_with<I, Reprojection::none>;
@@ -193,7 +197,10 @@ FieldSample<N> Tracer<N>::reproject(Vec<N>& x, const std::array<double, N - 1>& 
                                     double max_update) const {
   TraceStats local;
   FieldSample<N> sample = reproject_(*this, x, tau, max_update, local);
-  sample.velocity = cross<N>(sample.gradient);  // zero outside the noise domain, whose gradients are zero
+  if (field_.kind() == FieldKind::curl)  // (reprojection none) its velocity is no cross product
+    sample.velocity = field_.in_domain(x) ? field_.velocity(x) : Vec<N>::Zero();
+  else
+    sample.velocity = cross<N>(sample.gradient);  // zero outside the noise domain, whose gradients are zero
   if (stats) *stats += local;
   return sample;
 }

@@ -63,6 +63,14 @@ void CnjOptions::validate() const {
     throw std::invalid_argument("the torus has no boundary to drop points at: use domain mode conformant (its traces wrap)");
   if (domain == CnjDomain::torus && noise != NoiseBasis::turning_bands)
     throw std::invalid_argument(fmt::format("the torus needs a periodic noise basis: turning-bands (not {})", to_string(noise)));
+  parse_field_kind(to_string(field));
+  if (field == FieldKind::curl && trace.reprojection != Reprojection::none)
+    throw std::invalid_argument(
+        "curl noise has no reprojection (its streamlines are not intersections of iso-surfaces): --reproject none");
+  if (field == FieldKind::curl && domain != CnjDomain::torus && domain_mode == DomainMode::conformant)
+    throw std::invalid_argument(
+        "curl noise has no boundary treatment (Bridson's boundaries are not implemented): conformant CNJ in the "
+        "cube or ball needs --field dfvn; use the torus or --domain-mode drop");
   if (!(boundary_width > 0.0 && boundary_width <= 1e6))
     throw std::invalid_argument(fmt::format("boundary width must be in (0, 1e6] lattice spacings, got {:g}", boundary_width));
   // Refinements double the steps kMaxRefinements times: keep that an int.
@@ -132,7 +140,7 @@ CnjResult curl_noise_jitter(const LatticeSpec& requested_lattice, const CnjOptio
   result.trace_time = options.step_scale * average_neighbour_distance(N) * lattice.spacing();
   const DfvnField<N> field(seed, FieldOptions{options.noise, options.frequency / lattice.spacing(),
                                               field_constraint(options), cnj_transition_width(options, lattice),
-                                              options.bound, torus});
+                                              options.bound, torus, options.field});
   result.field_frequency = field.frequency();
   const Box domain{0.0, 1.0, options.domain == CnjDomain::ball};
   const std::vector<double> sites = cnj_start_sites(lattice, options.domain);

@@ -63,6 +63,10 @@ struct CnjOptions {
   // starts where alpha reaches 1: wider over-fills the boundary layer, narrower retraces more traces
   // (data/boundary_width.md holds the measurements).
   double boundary_width = 0.5;
+  // The field traced along: dfvn (the paper's) or curl (Bridson's curl noise, field/dfvn_field.hpp),
+  // which has no reprojection (trace.reprojection must be none) and no boundary treatment (the torus
+  // or drop mode only), in 2D and 3D.
+  FieldKind field = kDefaultFieldKind;
 
   void validate() const;  // throws std::invalid_argument naming the option
 };

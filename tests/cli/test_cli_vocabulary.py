@@ -43,6 +43,7 @@ SHARED = {
     "--dims": ["dimensions: a range or list within 3..7"],
     "--methods": ["comma list of methods"],
     "--noise": ["noise basis"],
+    "--field": ["divergence-free field: dfvn", "curl (bridson et al. 2007's curl noise, 2d and 3d"],
     "--frequency": ["cycles per unit length"],
     "--cycles-per-spacing": ["cycles per lattice spacing"],
     "--steps": ["cnj integration steps m"],
