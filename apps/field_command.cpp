@@ -26,6 +26,7 @@ struct FieldCommand : Subcommand {
   CommonOptions common;
   int dimension = 0;  // 0: the input's column count (3 with --diagnose)
   double frequency = 1.0;
+  double phase = 0.0;
   std::string noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
   std::string domain = "free";
   std::string bound = "eq13";
@@ -54,6 +55,7 @@ struct FieldCommand : Subcommand {
         ->capture_default_str()
         ->check(kNoiseFrequency);
     add_noise_option(*cmd, noise);
+    add_phase_option(*cmd, phase);
     cmd->add_option("--domain", domain,
                     "free (R^N), torus ([0,1)^N: the basis's periodic form, period 1 along every axis, at about F\n"
                     "cycles per unit length), cube ([0,1]^N) or ball (its inscribed ball): f_1 turned into the\n"
@@ -99,6 +101,7 @@ struct FieldCommand : Subcommand {
   dfvn::FieldOptions field_options() const {
     dfvn::FieldOptions o{dfvn::parse_noise_basis(noise), frequency};
     o.periodic = domain == "torus";
+    o.phase = phase;
     if (domain == "cube" || domain == "ball") {
       o.constraint = domain == "cube" ? dfvn::FieldConstraint::inside_cube : dfvn::FieldConstraint::inside_ball;
       o.transition_width = boundary_width;

@@ -141,6 +141,7 @@ struct SampleCommand : Subcommand {
         ->capture_default_str()
         ->check(kNoiseFrequency);
     add_noise_option(*cmd, noise);
+    add_phase_option(*cmd, config.cnj.phase);
     cmd->add_option("--reproject", reproject, "CNJ reprojection after each step: none, newton (Eq. 12), gauss-newton (Eq. 10-11)")
         ->capture_default_str()
         ->check(CLI::IsMember({"none", "newton", "gauss-newton"}));

@@ -33,8 +33,12 @@ struct FieldOptions {
   // The torus [0,1)^N: the basis's periodic form (period 1 along every axis, at about `frequency` cycles
   // per unit length; noise/noise_functions.hpp), with no constraint.
   bool periodic = false;
+  // The phase alpha in radians (rotating gradients, noise/noise_functions.hpp): every gradient of the basis
+  // turns in its own seeded plane, so the field has period 2 pi in alpha, and for every fixed alpha its
+  // f_i are C2 and c is exactly divergence-free with RMS |c| = 1. 0 is the field before phases existed.
+  double phase = 0.0;
 
-  // throws std::invalid_argument unless the frequency is finite and positive, the constraint's
+  // throws std::invalid_argument unless the frequency is finite and positive, the phase finite, the constraint's
   // transition width is in (0, 1/4] and a periodic field has a periodic basis and no constraint
   void validate() const;
 };

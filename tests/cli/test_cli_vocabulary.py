@@ -43,6 +43,7 @@ SHARED = {
     "--dims": ["dimensions: a range or list within 3..7"],
     "--methods": ["comma list of methods"],
     "--noise": ["noise basis"],
+    "--phase": ["noise phase alpha in radians", "0 is the field without a phase, bit for bit"],
     "--frequency": ["cycles per unit length"],
     "--cycles-per-spacing": ["cycles per lattice spacing"],
     "--steps": ["cnj integration steps m"],
