@@ -17,9 +17,10 @@ namespace {
 
 // The field's options as the command line's `field` takes them: domain 'free', 'torus', 'cube' or 'ball';
 // the bound and its width only for a bounded one.
-FieldOptions field_options(double frequency, const std::string& noise, const std::string& domain,
+FieldOptions field_options(double frequency, const std::string& noise, double phase, const std::string& domain,
                            const std::optional<std::string>& bound, const std::optional<double>& boundary_width) {
   FieldOptions o{parse_noise_basis(noise), frequency};
+  o.phase = phase;
   const bool bounded = domain == "cube" || domain == "ball";
   if (!bounded && domain != "free" && domain != "torus")
     throw py::value_error("unknown domain '" + domain + "' (allowed: free, torus, cube, ball)");
@@ -34,14 +35,14 @@ FieldOptions field_options(double frequency, const std::string& noise, const std
   return o;
 }
 
-py::tuple field(const PointArray& points, std::uint64_t seed, double frequency, const std::string& noise,
+py::tuple field(const PointArray& points, std::uint64_t seed, double frequency, const std::string& noise, double phase,
                 const std::string& domain, const std::optional<std::string>& bound,
                 const std::optional<double>& boundary_width, int threads) {
   const PointRows in = point_rows(points, kMinDimension, kMaxDimension);
   FieldQuery query;
   query.dimension = in.dimension;
   query.seed = seed;
-  query.field = field_options(frequency, noise, domain, bound, boundary_width);
+  query.field = field_options(frequency, noise, phase, domain, bound, boundary_width);
   query.threads = threads;
   py::array_t<double> velocity = new_array(in.rows, in.dimension);
   py::array_t<double> values = new_array(in.rows, in.dimension - 1);
@@ -55,14 +56,14 @@ py::tuple field(const PointArray& points, std::uint64_t seed, double frequency, 
 }
 
 py::array_t<double> trace(const PointArray& points, double time, std::uint64_t seed, double frequency,
-                          const std::string& noise, const std::string& integrator, const std::string& reprojection,
+                          const std::string& noise, double phase, const std::string& integrator, const std::string& reprojection,
                           int steps, const std::string& domain, const std::optional<std::string>& bound,
                           const std::optional<double>& boundary_width, int threads) {
   const PointRows in = point_rows(points, kMinDimension, kMaxDimension);
   TracePointsQuery query;
   query.dimension = in.dimension;
   query.seed = seed;
-  query.field = field_options(frequency, noise, domain, bound, boundary_width);
+  query.field = field_options(frequency, noise, phase, domain, bound, boundary_width);
   query.trace.integrator = parse_integrator(integrator);
   query.trace.reprojection = parse_reprojection(reprojection);
   query.trace.steps = steps;
@@ -82,13 +83,15 @@ py::array_t<double> trace(const PointArray& points, double time, std::uint64_t s
 void bind_field(py::module_& module) {
   using namespace pybind11::literals;
   module.def("field", &field, "points"_a, py::kw_only(), "seed"_a = 1, "frequency"_a = 1.0,
-             "noise"_a = std::string(to_string(kDefaultNoiseBasis)), "domain"_a = "free", "bound"_a = py::none(),
+             "noise"_a = std::string(to_string(kDefaultNoiseBasis)), "phase"_a = 0.0, "domain"_a = "free", "bound"_a = py::none(),
              "boundary_width"_a = py::none(), "threads"_a = 0,
              R"(The divergence-free field c(x) = cross(grad f_1, ..., grad f_{N-1}) (Eq. 8) at each point.
 
 points: (n, N) array, N = 2..8 (converted to float64 C order if it is not already).
 seed: the field's noise realization. frequency: cycles per unit length (one cycle = 2 pi / k_eff
 of the basis), in [2^-50, 2^50]. noise: 'turning-bands', 'simplex' or 'quintic-gradient'.
+phase (default 0.0): the noise's phase alpha in radians, any finite real (rotating gradients, as
+`dfvn-sample field --phase`): period 2 pi, alpha + pi flips every f_i, 0 is the field without a phase.
 domain: 'free' (R^N), 'torus' (the basis's periodic form: period 1 along every axis, at about
 `frequency` cycles per unit length; turning-bands only), 'cube' ([0,1]^N) or 'ball' (its inscribed
 ball): f_1 turned into the boundary function so that c is tangent to the boundary, by bound 'eq13'
@@ -98,14 +101,14 @@ ball): f_1 turned into the boundary function so that c is tangent to the boundar
 Returns (c, f): c (n, N), the field vector (RMS |c| = 1), and f (n, N-1), the noise values f_i(x);
 the same numbers as `dfvn-sample field` writes.)");
   module.def("trace", &trace, "points"_a, "t"_a, py::kw_only(), "seed"_a = 1, "frequency"_a = 1.0,
-             "noise"_a = std::string(to_string(kDefaultNoiseBasis)), "integrator"_a = "rk4",
+             "noise"_a = std::string(to_string(kDefaultNoiseBasis)), "phase"_a = 0.0, "integrator"_a = "rk4",
              "reprojection"_a = "gauss-newton", "steps"_a = 1, "domain"_a = "free", "bound"_a = py::none(),
              "boundary_width"_a = py::none(), "threads"_a = 0,
              R"(Trace each point along the field for time t (Algorithm 1); returns where they end, (n, N).
 
 integrator: 'euler' or 'rk4'; reprojection onto the iso-contours of the f_i after every step:
 'none', 'newton' (Eq. 12) or 'gauss-newton' (Eq. 10-11); steps: M, each of length t / M. The field
-options are those of dfvn.field: on the torus the ends are wrapped into [0,1)^N; in the cube or the
+options (phase included: the field at one fixed phase) are those of dfvn.field: on the torus the ends are wrapped into [0,1)^N; in the cube or the
 ball a trace that a long step carries out is traced again with 2, 4, ..., 64 times the steps (or
 stays at its start). t < 0 traces backwards; a trace reaching the edge of the noise domain stops
 there.)");

@@ -38,6 +38,7 @@ struct SampleArguments {
   std::optional<std::string> bound;
   int threads = 0;
   double max_memory_gib = 0.0;
+  double phase = 0.0;
 };
 
 // The dimension's name in messages is the caller's (the engines' `d`, sample's `dim`): python/dfvn
@@ -64,6 +65,7 @@ SampleConfig sample_config(const SampleArguments& a) {
   config.pds_candidates = a.ncandidates;
   config.cnj.noise = parse_noise_basis(a.noise);
   config.cnj.frequency = a.cycles_per_spacing;
+  config.cnj.phase = a.phase;
   config.cnj.step_scale = a.step_scale;
   config.cnj.trace.integrator = parse_integrator(a.integrator);
   config.cnj.trace.reprojection = parse_reprojection(a.reprojection);
@@ -152,10 +154,10 @@ void bind_sampling(py::module_& module) {
                const std::string& noise, double cycles_per_spacing, double step_scale, const std::string& integrator,
                const std::string& reprojection, int steps, const std::optional<std::string>& domain,
                const std::string& domain_mode, const std::optional<std::string>& bound, int threads,
-               double max_memory_gib) {
+               double max_memory_gib, double phase) {
       return f(SampleArguments{method, d, grid, n, seed, protocol, scramble, radius, ncandidates, noise,
                                cycles_per_spacing, step_scale, integrator, reprojection, steps, domain, domain_mode,
-                               bound, threads, max_memory_gib});
+                               bound, threads, max_memory_gib, phase});
     };
   };
   const char* doc = "Internal: one point set as `dfvn-sample --points` makes it (python/dfvn/qmc.py calls it).";
@@ -167,7 +169,7 @@ void bind_sampling(py::module_& module) {
                "reprojection"_a = std::string(to_string(cnj.trace.reprojection)),
                "steps"_a = CnjOptions::kStepsByDomainMode, "domain"_a = py::none(),
                "domain_mode"_a = std::string(to_string(cnj.domain_mode)), "bound"_a = py::none(), "threads"_a = 0,
-               "max_memory_gib"_a = 0.0, doc);
+               "max_memory_gib"_a = 0.0, "phase"_a = 0.0, doc);
   }
 }
 
