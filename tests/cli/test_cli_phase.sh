@@ -34,6 +34,12 @@ same() {
   same "sample ball --phase 0" ball.csv main_ball.stdout
 "$bin" --dim 2 --grid 5 --methods cnj --no-stats --points - -q --phase 0 >points.csv && same "sample points --phase 0" points.csv main_stdout.stdout
 
+# The sphere's CNJ takes the phase too.
+"$bin" sample --dim 3 --grid 6 --on sphere --no-timing -q --phase 0 >sphere.csv && same "sphere --phase 0" sphere.csv main_sphere.stdout
+"$bin" sample --dim 3 --grid 6 --on sphere --no-timing -q --phase 1 >sphere_1.csv
+mkdir -p moved && cp sphere_1.csv moved/main_sphere.stdout
+if cmp -s <(normalise moved/main_sphere.stdout) "$reference/main_sphere.stdout"; then bad "sample --on sphere --phase 1 changed nothing"; else ok; fi
+
 # A phase moves the points and the field; 2 pi later they are back, pi later the f_i change sign.
 "$bin" --dim 2 --grid 5 --methods cnj --no-stats --points - -q --phase 1 >points_1.csv
 if cmp -s points_1.csv points.csv; then bad "sample --phase 1 did not move the points"; else ok; fi
