@@ -26,6 +26,7 @@ struct FieldCommand : Subcommand {
   CommonOptions common;
   int dimension = 0;  // 0: the input's column count (3 with --diagnose)
   double frequency = 1.0;
+  double phase = 0.0;
   std::string noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
   std::string field_kind{dfvn::to_string(dfvn::kDefaultFieldKind)};
   std::string domain = "free";
@@ -57,6 +58,7 @@ struct FieldCommand : Subcommand {
     add_noise_option(*cmd, noise);
     add_field_kind_option(*cmd, field_kind,
                           "With curl: --domain free or torus;\nthe columns f1..f{N-1} are then psi_1..psi_{N-1}");
+    add_phase_option(*cmd, phase);
     cmd->add_option("--domain", domain,
                     "free (R^N), torus ([0,1)^N: the basis's periodic form, period 1 along every axis, at about F\n"
                     "cycles per unit length), cube ([0,1]^N) or ball (its inscribed ball): f_1 turned into the\n"
@@ -103,6 +105,7 @@ struct FieldCommand : Subcommand {
     dfvn::FieldOptions o{dfvn::parse_noise_basis(noise), frequency};
     o.periodic = domain == "torus";
     o.kind = dfvn::parse_field_kind(field_kind);
+    o.phase = phase;
     if (domain == "cube" || domain == "ball") {
       o.constraint = domain == "cube" ? dfvn::FieldConstraint::inside_cube : dfvn::FieldConstraint::inside_ball;
       o.transition_width = boundary_width;

@@ -134,6 +134,22 @@ CLI::Option* add_field_kind_option(CLI::App& cmd, std::string& field, const std:
       ->check(CLI::IsMember({"dfvn", "curl"}));
 }
 
+void add_phase_option(CLI::App& cmd, double& phase) {
+  cmd.add_option("--phase", phase,
+                 "Noise phase alpha in radians, any finite real: every gradient of the basis turns in its own seeded\n"
+                 "plane (McEwan & Gustavson's rotating gradients), so the field changes smoothly with alpha, has\n"
+                 "period 2 pi (alpha + pi flips every f_i), and stays exactly divergence-free with RMS |c| = 1;\n"
+                 "0 is the field without a phase, bit for bit")
+      ->capture_default_str()
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            double value = 0.0;
+            if (CLI::detail::lexical_cast(text, value) && std::isfinite(value)) return {};
+            return "must be a finite number of radians, got " + dfvn::quote_for_message(text);
+          },
+          "RADIANS"));
+}
+
 void refuse_options(CLI::App& cmd, const std::vector<std::pair<std::string, std::string>>& names_and_messages) {
   std::vector<std::pair<const CLI::Option*, std::string>> refused;
   for (const auto& [name, message] : names_and_messages)

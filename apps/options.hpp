@@ -42,6 +42,8 @@ CLI::Option* add_dimension_option(CLI::App& cmd, int& dimension, const std::stri
 void add_noise_option(CLI::App& cmd, std::string& noise);
 // --field: which divergence-free field the noise makes, dfvn (the paper's) or curl (Bridson's curl noise).
 CLI::Option* add_field_kind_option(CLI::App& cmd, std::string& field, const std::string& consequences);
+// --phase: the noise's phase alpha in radians (rotating gradients; any finite real, default 0).
+void add_phase_option(CLI::App& cmd, double& phase);
 
 // Names that no longer mean what they meant here (issue 24's one vocabulary), each with the line that
 // names the option to use instead: hidden from the help, and giving one (with a value or without)

@@ -151,6 +151,7 @@ struct SampleCommand : Subcommand {
                     "curl only none, its default")
         ->capture_default_str()
         ->check(CLI::IsMember({"none", "newton", "gauss-newton"}));
+    add_phase_option(*cmd, config.cnj.phase);
     domain_option = cmd->add_option("--domain", domain,
                                     "Where CNJ's points stay: torus ([0,1)^N with opposite faces identified: a periodic\n"
                                     "field, wrapped traces, the cell-centred lattice; no boundary at all), cube ([0,1]^N)\n"

@@ -17,10 +17,11 @@ namespace {
 
 // The field's options as the command line's `field` takes them: domain 'free', 'torus', 'cube' or 'ball';
 // the bound and its width only for a bounded one.
-FieldOptions field_options(double frequency, const std::string& noise, const std::string& domain,
+FieldOptions field_options(double frequency, const std::string& noise, double phase, const std::string& domain,
                            const std::optional<std::string>& bound, const std::optional<double>& boundary_width,
                            const std::string& field) {
   FieldOptions o{parse_noise_basis(noise), frequency};
+  o.phase = phase;
   o.kind = parse_field_kind(field);
   if (o.kind == FieldKind::curl && domain != "free" && domain != "torus")
     throw py::value_error("field 'curl' has no boundary treatment (Bridson's boundaries are not implemented): "
@@ -39,14 +40,14 @@ FieldOptions field_options(double frequency, const std::string& noise, const std
   return o;
 }
 
-py::tuple field(const PointArray& points, std::uint64_t seed, double frequency, const std::string& noise,
+py::tuple field(const PointArray& points, std::uint64_t seed, double frequency, const std::string& noise, double phase,
                 const std::string& domain, const std::optional<std::string>& bound,
                 const std::optional<double>& boundary_width, const std::string& field_kind, int threads) {
   const PointRows in = point_rows(points, kMinDimension, kMaxDimension);
   FieldQuery query;
   query.dimension = in.dimension;
   query.seed = seed;
-  query.field = field_options(frequency, noise, domain, bound, boundary_width, field_kind);
+  query.field = field_options(frequency, noise, phase, domain, bound, boundary_width, field_kind);
   query.threads = threads;
   py::array_t<double> velocity = new_array(in.rows, in.dimension);
   py::array_t<double> values = new_array(in.rows, in.dimension - 1);
@@ -60,7 +61,7 @@ py::tuple field(const PointArray& points, std::uint64_t seed, double frequency, 
 }
 
 py::array_t<double> trace(const PointArray& points, double time, std::uint64_t seed, double frequency,
-                          const std::string& noise, const std::string& integrator,
+                          const std::string& noise, double phase, const std::string& integrator,
                           const std::optional<std::string>& reprojection, int steps, const std::string& domain,
                           const std::optional<std::string>& bound, const std::optional<double>& boundary_width,
                           const std::string& field_kind, int threads) {
@@ -68,7 +69,7 @@ py::array_t<double> trace(const PointArray& points, double time, std::uint64_t s
   TracePointsQuery query;
   query.dimension = in.dimension;
   query.seed = seed;
-  query.field = field_options(frequency, noise, domain, bound, boundary_width, field_kind);
+  query.field = field_options(frequency, noise, phase, domain, bound, boundary_width, field_kind);
   query.trace.integrator = parse_integrator(integrator);
   // Not given: gauss-newton, or none for curl noise, which has no reprojection (the tracer refuses one).
   query.trace.reprojection = parse_reprojection(
@@ -90,13 +91,16 @@ py::array_t<double> trace(const PointArray& points, double time, std::uint64_t s
 void bind_field(py::module_& module) {
   using namespace pybind11::literals;
   module.def("field", &field, "points"_a, py::kw_only(), "seed"_a = 1, "frequency"_a = 1.0,
-             "noise"_a = std::string(to_string(kDefaultNoiseBasis)), "domain"_a = "free", "bound"_a = py::none(),
-             "boundary_width"_a = py::none(), "field"_a = std::string(to_string(kDefaultFieldKind)), "threads"_a = 0,
+             "noise"_a = std::string(to_string(kDefaultNoiseBasis)), "phase"_a = 0.0, "domain"_a = "free",
+             "bound"_a = py::none(), "boundary_width"_a = py::none(),
+             "field"_a = std::string(to_string(kDefaultFieldKind)), "threads"_a = 0,
              R"(The divergence-free field c(x) = cross(grad f_1, ..., grad f_{N-1}) (Eq. 8) at each point.
 
 points: (n, N) array, N = 2..8 (converted to float64 C order if it is not already).
 seed: the field's noise realization. frequency: cycles per unit length (one cycle = 2 pi / k_eff
 of the basis), in [2^-50, 2^50]. noise: 'turning-bands', 'simplex' or 'quintic-gradient'.
+phase (default 0.0): the noise's phase alpha in radians, any finite real (rotating gradients, as
+`dfvn-sample field --phase`): period 2 pi, alpha + pi flips every f_i, 0 is the field without a phase.
 domain: 'free' (R^N), 'torus' (the basis's periodic form: period 1 along every axis, at about
 `frequency` cycles per unit length; turning-bands only), 'cube' ([0,1]^N) or 'ball' (its inscribed
 ball): f_1 turned into the boundary function so that c is tangent to the boundary, by bound 'eq13'
@@ -109,7 +113,7 @@ then holds psi_1..psi_{N-1}). threads: 0 = all cores (the result never depends o
 Returns (c, f): c (n, N), the field vector (RMS |c| = 1), and f (n, N-1), the noise values f_i(x);
 the same numbers as `dfvn-sample field` writes.)");
   module.def("trace", &trace, "points"_a, "t"_a, py::kw_only(), "seed"_a = 1, "frequency"_a = 1.0,
-             "noise"_a = std::string(to_string(kDefaultNoiseBasis)), "integrator"_a = "rk4",
+             "noise"_a = std::string(to_string(kDefaultNoiseBasis)), "phase"_a = 0.0, "integrator"_a = "rk4",
              "reprojection"_a = py::none(), "steps"_a = 1, "domain"_a = "free", "bound"_a = py::none(),
              "boundary_width"_a = py::none(), "field"_a = std::string(to_string(kDefaultFieldKind)), "threads"_a = 0,
              R"(Trace each point along the field for time t (Algorithm 1); returns where they end, (n, N).
@@ -117,8 +121,8 @@ the same numbers as `dfvn-sample field` writes.)");
 integrator: 'euler' or 'rk4'; reprojection onto the iso-contours of the f_i after every step:
 'none', 'newton' (Eq. 12) or 'gauss-newton' (Eq. 10-11); default 'gauss-newton', and 'none' with
 field='curl', which has no reprojection (its streamlines are not intersections of iso-surfaces; any
-other is refused); steps: M, each of length t / M. The field
-options are those of dfvn.field: on the torus the ends are wrapped into [0,1)^N; in the cube or the
+other is refused); steps: M, each of length t / M. The field options (phase included: the field at
+one fixed phase) are those of dfvn.field: on the torus the ends are wrapped into [0,1)^N; in the cube or the
 ball a trace that a long step carries out is traced again with 2, 4, ..., 64 times the steps (or
 stays at its start). t < 0 traces backwards; a trace reaching the edge of the noise domain stops
 there.)");

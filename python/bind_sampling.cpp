@@ -39,6 +39,7 @@ struct SampleArguments {
   int threads = 0;
   double max_memory_gib = 0.0;
   std::string field = "dfvn";
+  double phase = 0.0;
 };
 
 // The dimension's name in messages is the caller's (the engines' `d`, sample's `dim`): python/dfvn
@@ -65,6 +66,7 @@ SampleConfig sample_config(const SampleArguments& a) {
   config.pds_candidates = a.ncandidates;
   config.cnj.noise = parse_noise_basis(a.noise);
   config.cnj.frequency = a.cycles_per_spacing;
+  config.cnj.phase = a.phase;
   config.cnj.step_scale = a.step_scale;
   config.cnj.trace.integrator = parse_integrator(a.integrator);
   config.cnj.field = parse_field_kind(a.field);
@@ -163,10 +165,10 @@ void bind_sampling(py::module_& module) {
                const std::string& noise, double cycles_per_spacing, double step_scale, const std::string& integrator,
                const std::optional<std::string>& reprojection, int steps, const std::optional<std::string>& domain,
                const std::string& domain_mode, const std::optional<std::string>& bound, int threads,
-               double max_memory_gib, const std::string& field) {
+               double max_memory_gib, const std::string& field, double phase) {
       return f(SampleArguments{method, d, grid, n, seed, protocol, scramble, radius, ncandidates, noise,
                                cycles_per_spacing, step_scale, integrator, reprojection, steps, domain, domain_mode,
-                               bound, threads, max_memory_gib, field});
+                               bound, threads, max_memory_gib, field, phase});
     };
   };
   const char* doc = "Internal: one point set as `dfvn-sample --points` makes it (python/dfvn/qmc.py calls it).";
@@ -178,7 +180,7 @@ void bind_sampling(py::module_& module) {
                "reprojection"_a = py::none(),
                "steps"_a = CnjOptions::kStepsByDomainMode, "domain"_a = py::none(),
                "domain_mode"_a = std::string(to_string(cnj.domain_mode)), "bound"_a = py::none(), "threads"_a = 0,
-               "max_memory_gib"_a = 0.0, "field"_a = std::string(to_string(cnj.field)), doc);
+               "max_memory_gib"_a = 0.0, "field"_a = std::string(to_string(cnj.field)), "phase"_a = 0.0, doc);
   }
 }
 

@@ -105,6 +105,8 @@ std::string sampling_json(const SampleConfig& config, const std::vector<Sampling
                        {"boundary_spacings", config.cnj.boundary_width}};
   // Only when not the default, so that --field dfvn's report keeps today's bytes.
   if (config.cnj.field != kDefaultFieldKind) parameters["cnj"]["field"] = to_string(config.cnj.field);
+  // Only a phase other than 0 is recorded, so that a phase-free run's report stays what it was.
+  if (config.cnj.phase != 0.0) parameters["cnj"]["phase"] = config.cnj.phase;
   parameters["periodic_statistics"] = config.periodic_statistics;
   // null: the protocol's radius, which each pds result gives under "generation".
   parameters["pds"] = {{"radius", config.pds_radius > 0.0 ? ordered_json(config.pds_radius) : ordered_json(nullptr)},

@@ -35,6 +35,7 @@ void FieldOptions::validate() const {
     throw std::invalid_argument(fmt::format(
         "curl noise has no boundary treatment here: --field curl takes no {} constraint (use the free field or the torus)",
         to_string(constraint)));
+  check_noise_phase(phase);
   parse_bound(to_string(bound));  // an unknown enum value throws
   if (periodic && constraint != FieldConstraint::none)
     throw std::invalid_argument(fmt::format("the torus has no boundary: a periodic field takes no {} constraint",
@@ -117,8 +118,8 @@ double curl_amplitude(const NoiseFunctions<N>& noise, const NoiseFunctions<N>& t
 
 template <int N>
 DfvnField<N>::DfvnField(std::uint64_t seed, const FieldOptions& options)
-    : noise_((options.validate(), options.periodic ? make_periodic_noise_functions<N>(options.noise, seed, options.frequency)
-                                                   : make_noise_functions<N>(options.noise, seed))),
+    : noise_((options.validate(), options.periodic ? make_periodic_noise_functions<N>(options.noise, seed, options.frequency, options.phase)
+                                                   : make_noise_functions<N>(options.noise, seed, options.phase))),
       options_(options),
       seed_(seed),
       scale_(options.periodic ? 1.0 : 2.0 * std::numbers::pi * options.frequency / noise_->wavenumber()),

@@ -46,10 +46,14 @@ struct FieldOptions {
   bool periodic = false;
   // Which field the functions make (FieldKind above); curl needs N <= 3 and no constraint.
   FieldKind kind = kDefaultFieldKind;
+  // The phase alpha in radians (rotating gradients, noise/noise_functions.hpp): every gradient of the basis
+  // turns in its own seeded plane, so the field has period 2 pi in alpha, and for every fixed alpha its
+  // f_i are C2 and c is exactly divergence-free with RMS |c| = 1. 0 is the field before phases existed.
+  double phase = 0.0;
 
-  // throws std::invalid_argument unless the frequency is finite and positive, the constraint's
-  // transition width is in (0, 1/4], a periodic field has a periodic basis and no constraint, and a
-  // curl field has no constraint (its dimension is checked by DfvnField<N>)
+  // throws std::invalid_argument unless the frequency is finite and positive, the phase finite, the
+  // constraint's transition width is in (0, 1/4], a periodic field has a periodic basis and no constraint,
+  // and a curl field has no constraint (its dimension is checked by DfvnField<N>)
   void validate() const;
 };
 

@@ -14,6 +14,8 @@ namespace {
 // Lanes of the gradient-noise stream, per function (index = function): the hash key, the offset
 // components from kOffsetLane on, and the Gaussian entries of the rotation from kFrameLane on.
 constexpr std::uint64_t kKeyLane = 0, kOffsetLane = 1, kFrameLane = 16;
+// The key of the phase's second gradients, past the offset's lanes (kOffsetLane + d < 9) and before the frame's.
+constexpr std::uint64_t kPhaseKeyLane = 12;
 
 // Exact arithmetic on polynomials in u with double coefficients (all of them small integers or
 // their ratios here, so the integrals below are exact up to one rounding per term).
@@ -69,10 +71,12 @@ GradientNoiseMoments quintic_gradient_noise_moments(int dimension) {
 }
 
 template <int N>
-QuinticGradientNoise<N>::QuinticGradientNoise(std::uint64_t seed) {
+QuinticGradientNoise<N>::QuinticGradientNoise(std::uint64_t seed, double phase)
+    : phase_(phase), cos_phase_(std::cos(phase)), sin_phase_(std::sin(phase)) {
   for (int i = 0; i < N - 1; ++i) {
     const auto index = static_cast<std::uint64_t>(i);
     keys_[i] = random_bits(seed, Stream::gradient_noise, index, kKeyLane);
+    phase_keys_[i] = random_bits(seed, Stream::gradient_noise, index, kPhaseKeyLane);
     for (int d = 0; d < N; ++d)
       offsets_[i][d] = random_unit(seed, Stream::gradient_noise, index, kOffsetLane + static_cast<std::uint64_t>(d));
     rotations_[i] = i == 0 ? Eigen::Matrix<double, N, N>::Identity()
@@ -91,7 +95,25 @@ constexpr std::uint64_t axis_multiplier(int axis) { return mix64(kGoldenGamma * 
 
 template <int N>
 Vec<N> QuinticGradientNoise<N>::lattice_gradient(int function, const std::array<std::int64_t, N>& lattice) const {
-  std::uint64_t h = keys_[function];
+  return hashed_gradient(keys_[function], lattice);
+}
+
+template <int N>
+Vec<N> QuinticGradientNoise<N>::rotated_lattice_gradient(int function, const std::array<std::int64_t, N>& lattice) const {
+  const Vec<N> p = hashed_gradient(keys_[function], lattice);
+  Vec<N> q = hashed_gradient(phase_keys_[function], lattice);
+  const double p2 = p.squaredNorm();
+  if (!(p2 > 0.0)) return p;  // the zero gradient (probability 2^-31N) stays zero
+  q -= (q.dot(p) / p2) * p;
+  const double q2 = q.squaredNorm();
+  // q parallel to p (probability ~0 for continuous components): turn only along p, still 2 pi-periodic.
+  if (!(q2 > 1e-24 * p2)) return cos_phase_ * p;
+  return cos_phase_ * p + (sin_phase_ * std::sqrt(p2 / q2)) * q;
+}
+
+template <int N>
+Vec<N> QuinticGradientNoise<N>::hashed_gradient(std::uint64_t key, const std::array<std::int64_t, N>& lattice) {
+  std::uint64_t h = key;
   for (int d = 0; d < N; ++d) h += static_cast<std::uint64_t>(lattice[d]) * axis_multiplier(d);
   // Two components per 64-bit word: each 32-bit half read as a signed integer and scaled to [-1, 1).
   Vec<N> g;
@@ -133,7 +155,7 @@ NoiseSample<N, N - 1> QuinticGradientNoise<N>::evaluate(const Vec<N>& x) const {
         offset[d] = u[d] - bit;
         prefix[d + 1] = prefix[d] * weight[d][bit];
       }
-      const Vec<N> g = lattice_gradient(i, lattice);
+      const Vec<N> g = phase_ != 0.0 ? rotated_lattice_gradient(i, lattice) : lattice_gradient(i, lattice);
       const double projection = g.dot(offset);
       const double w = prefix[N];
       // grad (w g.(u - c)) = w g + (g.(u - c)) grad w, with d w / d u_d = w_d' prod_{e != d} w_e.

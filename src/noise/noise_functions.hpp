@@ -52,9 +52,13 @@ class NoiseFunctions {
   virtual double amplitude() const = 0;
 };
 
-// The basis's functions for `seed`. Throws std::invalid_argument for an unknown basis.
+// The basis's functions for `seed` at the phase `phase` in radians (rotating gradients: every gradient of
+// every basis turns in its own seeded plane, g(alpha) = p cos alpha + q sin alpha, so each function has
+// period 2 pi in the phase, changes sign at pi, and keeps its k_eff and amplitude; each basis's header
+// says how, and README "Fields that move: --phase" why). Phase 0 is bit for bit the phase-free basis.
+// Throws std::invalid_argument for an unknown basis or a non-finite phase.
 template <int N>
-std::shared_ptr<const NoiseFunctions<N>> make_noise_functions(NoiseBasis basis, std::uint64_t seed);
+std::shared_ptr<const NoiseFunctions<N>> make_noise_functions(NoiseBasis basis, std::uint64_t seed, double phase = 0.0);
 
 // The basis's periodic form for the torus [0,1)^N: functions with period 1 along every axis, evaluated
 // at x itself (no scale), at about `frequency` cycles per unit length (wavenumber() / 2 pi says exactly).
@@ -62,6 +66,9 @@ std::shared_ptr<const NoiseFunctions<N>> make_noise_functions(NoiseBasis basis, 
 // for a frequency outside the periodic form's range.
 template <int N>
 std::shared_ptr<const NoiseFunctions<N>> make_periodic_noise_functions(NoiseBasis basis, std::uint64_t seed,
-                                                                       double frequency);
+                                                                       double frequency, double phase = 0.0);
+
+// Throws std::invalid_argument unless the phase is finite.
+void check_noise_phase(double phase);
 
 }  // namespace dfvn

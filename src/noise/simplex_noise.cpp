@@ -34,6 +34,37 @@ inline void gradient_from_hash(std::uint64_t h, double* g) {
   }
 }
 
+// The corner gradient at a phase (the header): p from the hash h, q from re-mixed hashes of the same
+// set until it is not parallel to p (for N >= 3 the axis where p is zero gives one if 16 draws did not).
+template <int N>
+inline void rotated_gradient_from_hash(std::uint64_t h, double cos_phase, double sin_phase, double* g) {
+  double p[N], q[N];
+  gradient_from_hash<N>(h, p);
+  double p2 = 0.0;
+  for (int j = 0; j < N; ++j) p2 += p[j] * p[j];
+  double q2 = 0.0;
+  std::uint64_t k = h;
+  for (int attempt = 0; attempt < 17; ++attempt) {
+    if (attempt < 16) {
+      k = mix64(k + kGoldenGamma);
+      gradient_from_hash<N>(k, q);
+    } else if constexpr (N == 2) {  // p turned by 90 degrees
+      q[0] = -p[1];
+      q[1] = p[0];
+    } else {
+      for (int j = 0; j < N; ++j) q[j] = p[j] == 0.0 ? 1.0 : 0.0;
+    }
+    double qp = 0.0;
+    for (int j = 0; j < N; ++j) qp += q[j] * p[j];
+    for (int j = 0; j < N; ++j) q[j] -= (qp / p2) * p[j];
+    q2 = 0.0;
+    for (int j = 0; j < N; ++j) q2 += q[j] * q[j];
+    if (q2 > 1e-12 * p2) break;
+  }
+  const double scale = sin_phase * std::sqrt(p2 / q2);
+  for (int j = 0; j < N; ++j) g[j] = cos_phase * p[j] + scale * q[j];
+}
+
 }  // namespace
 
 // Odd constants for the vertex hash: the SplitMix64 outputs (mix64 of consecutive golden-ratio
@@ -46,8 +77,12 @@ constexpr std::array<std::uint64_t, kMaxDimension> make_axis_multipliers() {
 inline constexpr std::array<std::uint64_t, kMaxDimension> kAxisMultipliers = make_axis_multipliers();
 
 template <int N>
-SimplexNoise<N>::SimplexNoise(std::uint64_t seed)
-    : seed_(seed), seed_hash_(mix64(seed ^ static_cast<std::uint64_t>(Stream::noise))) {}
+SimplexNoise<N>::SimplexNoise(std::uint64_t seed, double phase)
+    : seed_(seed),
+      phase_(phase),
+      cos_phase_(std::cos(phase)),
+      sin_phase_(std::sin(phase)),
+      seed_hash_(mix64(seed ^ static_cast<std::uint64_t>(Stream::noise))) {}
 
 template <int N>
 template <int M>
@@ -114,7 +149,10 @@ NoiseSample<N, M> SimplexNoise<N>::evaluate(const Vec<N>& x, int first_function)
       // An independent gradient per function: the vertex hash re-mixed with the function index.
       const std::uint64_t h = mix64(vertex_hash + static_cast<std::uint64_t>(first_function + m + 1) * kGoldenGamma);
       Vec<N> g;
-      gradient_from_hash<N>(h, g.data());
+      if (phase_ != 0.0)
+        rotated_gradient_from_hash<N>(h, cos_phase_, sin_phase_, g.data());
+      else
+        gradient_from_hash<N>(h, g.data());
       const double g_dot_d = g.dot(offset);
       // d/dx [t^4 (g.d)] = t^4 g + 4 t^3 (g.d) dt/dx, with dt/dx = -2 d.
       out.value[m] += t4 * g_dot_d;
@@ -152,8 +190,8 @@ double simplex_wavenumber(int dimension) {
 }
 
 template <int N>
-SimplexNoiseFunctions<N>::SimplexNoiseFunctions(std::uint64_t seed)
-    : noise_(seed), wavenumber_(simplex_wavenumber(N)), amplitude_(simplex_field_amplitude(N)) {}
+SimplexNoiseFunctions<N>::SimplexNoiseFunctions(std::uint64_t seed, double phase)
+    : noise_(seed, phase), wavenumber_(simplex_wavenumber(N)), amplitude_(simplex_field_amplitude(N)) {}
 
 // Every dimension with the fused (all N-1 functions) and the single-function traversal; in 2D the
 // two are the same instantiation.

@@ -34,6 +34,16 @@ namespace dfvn {
 //
 // So r^2 = 1/2 for every N. (Gustavson's 3D code uses 0.6 and the Python port the paper used uses
 // 0.70-0.82 for N >= 3: both exceed the bound, so their noise jumps across simplex faces.)
+//
+// The phase alpha (rotating gradients, McEwan & Gustavson's flow noise, seeds/001, in every dimension):
+// the corner gradient at alpha is g(alpha) = p cos alpha + q sin alpha, p the corner's gradient above (the
+// one of alpha = 0) and q a second gradient of the same set, hashed again until it is not parallel to p,
+// made orthogonal to p and as long as p: g turns in its own plane at constant length, period 2 pi,
+// g(alpha + pi) = -g(alpha). The construction commutes with the axis permutations and sign flips that
+// map the gradient set to itself, so E[g g^T] stays (E|g|^2 / N) I at every alpha, and k_eff and the
+// field's measured amplitude (which depend on the corner gradients only through these second moments:
+// each function's gradient is linear in its independent corner gradients) hold at every alpha. Phase 0
+// evaluates exactly the phase-free code.
 template <int N>
 class SimplexNoise {
  public:
@@ -41,7 +51,7 @@ class SimplexNoise {
   static constexpr int kMaxFunctions = N - 1;
   static constexpr double kKernelRadius2 = 0.5;
 
-  explicit SimplexNoise(std::uint64_t seed);
+  explicit SimplexNoise(std::uint64_t seed, double phase = 0.0);
 
   // Values and gradients of the functions first_function .. first_function + M - 1 at x, computed in
   // one traversal of the simplex. Function indices are in [0, kMaxFunctions).
@@ -52,9 +62,11 @@ class SimplexNoise {
   NoiseSample<N, N - 1> evaluate_all(const Vec<N>& x) const { return evaluate<N - 1>(x, 0); }
 
   std::uint64_t seed() const { return seed_; }
+  double phase() const { return phase_; }
 
  private:
   std::uint64_t seed_;
+  double phase_ = 0.0, cos_phase_ = 1.0, sin_phase_ = 0.0;
   std::uint64_t seed_hash_;  // mix64 of the seed and the noise stream, the start of every vertex hash
 };
 
@@ -65,7 +77,7 @@ double simplex_wavenumber(int dimension);
 template <int N>
 class SimplexNoiseFunctions final : public NoiseFunctions<N> {
  public:
-  explicit SimplexNoiseFunctions(std::uint64_t seed);
+  explicit SimplexNoiseFunctions(std::uint64_t seed, double phase = 0.0);
   NoiseSample<N, N - 1> evaluate(const Vec<N>& x) const override { return noise_.evaluate_all(x); }
   double wavenumber() const override { return wavenumber_; }
   double amplitude() const override { return amplitude_; }

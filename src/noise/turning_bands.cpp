@@ -11,7 +11,7 @@ namespace {
 
 // Lanes of the turning-bands stream: per band (index = band) the key and the offset; per frame
 // (index = function * 2 + frame) the Gaussian entries from lane kFrameLane on.
-constexpr std::uint64_t kKeyLane = 0, kOffsetLane = 1, kFrameLane = 16;
+constexpr std::uint64_t kKeyLane = 0, kOffsetLane = 1, kPhaseKeyLane = 2, kFrameLane = 16;
 constexpr std::uint64_t kFrameIndexBase = 1ULL << 32;  // frames never share an index with a band
 
 }  // namespace
@@ -26,7 +26,7 @@ BandMoments quintic_band_moments() {
 }
 
 template <int N>
-void TurningBandsNoise<N>::draw_bands(std::uint64_t seed) {
+void TurningBandsNoise<N>::draw_bands(std::uint64_t seed, double phase) {
   Eigen::Matrix<double, kBands, N> rows;
   for (int i = 0; i < N - 1; ++i)
     for (int frame = 0; frame < 2; ++frame) {
@@ -39,7 +39,11 @@ void TurningBandsNoise<N>::draw_bands(std::uint64_t seed) {
   for (int b = 0; b < kBands; ++b) {
     keys_[b] = random_bits(seed, Stream::turning_bands, static_cast<std::uint64_t>(b), kKeyLane);
     offsets_[b] = random_unit(seed, Stream::turning_bands, static_cast<std::uint64_t>(b), kOffsetLane);
+    phase_keys_[b] = random_bits(seed, Stream::turning_bands, static_cast<std::uint64_t>(b), kPhaseKeyLane);
   }
+  phase_ = phase;
+  cos_phase_ = std::cos(phase);
+  sin_phase_ = std::sin(phase);
 }
 
 template <int N>
@@ -51,8 +55,9 @@ void TurningBandsNoise<N>::set_rows(const Eigen::Matrix<double, kBands, N>& rows
 }
 
 template <int N>
-TurningBandsNoise<N>::TurningBandsNoise(std::uint64_t seed, Simd simd) : kernel_(Kernel::template choose<false>(simd)) {
-  draw_bands(seed);
+TurningBandsNoise<N>::TurningBandsNoise(std::uint64_t seed, Simd simd, double phase)
+    : kernel_(Kernel::template choose<false>(simd, phase != 0.0)) {
+  draw_bands(seed, phase);
   // |w| = 1 and the bands are independent: E|grad n|^2 / E n^2 = E p'^2 / E p^2.
   const BandMoments m = quintic_band_moments();
   wavenumber_ = std::sqrt(m.slope2 / m.value2);

@@ -29,6 +29,18 @@ namespace dfvn {
 // Free of transcendental functions: per evaluation 2N(N-1) bands, each a dot product, two hashes and a
 // polynomial.
 //
+// The phase alpha (rotating gradients, McEwan & Gustavson's flow noise, seeds/001): a 1D gradient is a
+// scalar slope, and there is no plane of a line to rotate in. So every knot carries a 2-vector (a, b) of
+// two independent seeded slopes, each uniform in [-1, 1) (a is the knot's slope at alpha = 0), and its
+// slope at alpha is that vector's component along (cos alpha, sin alpha): g(alpha) = a cos alpha +
+// b sin alpha. E g^2 = (1/3)(cos^2 + sin^2) = 1/3 at every alpha (no rescaling is needed) and slopes of
+// different knots stay independent with zero mean, so E p^2, E p'^2, k_eff and amplitude() are those of
+// alpha = 0 exactly; E[g(0) g(alpha)] / E g^2 = cos alpha, so the noise's correlation with its alpha = 0
+// self is cos alpha; g(alpha + pi) = -g(alpha) and the period is 2 pi. For a fixed alpha the profile is
+// the same quintic form in the knot slopes, so p and every n_i stay C2. (The slope's distribution is no
+// longer uniform away from multiples of pi / 2: only its moments up to the second are kept.) Phase 0
+// runs the phase-free kernel, bit for bit the noise before phases existed.
+//
 // The periodic form (the torus [0,1)^N, TurningBandsNoise(seed, Periodic{F})) has period 1 along every
 // axis and is evaluated at x itself (the field's scale is 1): band b is p_b(V_b . x + o_b) with an
 // integer knot vector V_b and knot slopes hashed from the knot index modulo L_b, the largest power of
@@ -49,13 +61,13 @@ class TurningBandsNoise final : public NoiseFunctions<N> {
   static constexpr int kBands = (N - 1) * kBandsPerFunction;
 
   // `simd`: which build of the evaluation kernel runs (core/simd.hpp); every build gives the same bits.
-  explicit TurningBandsNoise(std::uint64_t seed, Simd simd = Simd::best);
+  explicit TurningBandsNoise(std::uint64_t seed, Simd simd = Simd::best, double phase = 0.0);
   // The periodic form at about `frequency` cycles per unit length (throws std::invalid_argument outside
   // [kMinNoiseFrequency, kMaxPeriodicFrequency]).
   struct Periodic {
     double frequency;
   };
-  TurningBandsNoise(std::uint64_t seed, Periodic periodic, Simd simd = Simd::best);
+  TurningBandsNoise(std::uint64_t seed, Periodic periodic, Simd simd = Simd::best, double phase = 0.0);
   // Integer knot entries stay exact in doubles, and band coordinates far below 2^52, up to this.
   static constexpr double kMaxPeriodicFrequency = 0x1p20;
 
@@ -67,6 +79,7 @@ class TurningBandsNoise final : public NoiseFunctions<N> {
   // integer knot vectors V_b of the periodic form.
   Eigen::Matrix<double, kBands, N> directions() const;
   bool periodic() const { return periodic_; }
+  double phase() const { return phase_; }
 
  private:
   // The evaluation kernel works on vectors of up to 8 doubles (AVX-512): 8 bands at a time for the
@@ -81,12 +94,14 @@ class TurningBandsNoise final : public NoiseFunctions<N> {
   std::array<std::array<double, kLanes>, kBands> rows_;    // rows_[b] = w_b, zero-padded
   std::array<std::uint64_t, kPaddedBands> keys_{};
   std::array<std::int64_t, kPaddedBands> knot_masks_{};  // periodic form: L_b - 1 (0 in padding bands)
+  std::array<std::uint64_t, kPaddedBands> phase_keys_{};  // the keys of the knots' second slopes b
+  double phase_ = 0.0, cos_phase_ = 1.0, sin_phase_ = 0.0;
   bool periodic_ = false;
   double wavenumber_ = 0.0, amplitude_ = 0.0;
   void (*kernel_)(const TurningBandsNoise& noise, const Vec<N>& x, NoiseSample<N, N - 1>& out);
 
   // The frames and per-band keys and offsets, shared by both forms.
-  void draw_bands(std::uint64_t seed);
+  void draw_bands(std::uint64_t seed, double phase);
   void set_rows(const Eigen::Matrix<double, kBands, N>& rows);
 };
 

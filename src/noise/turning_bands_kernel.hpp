@@ -24,10 +24,14 @@ inline double knot_slope(std::uint64_t key, std::int64_t j) {
 // and two polynomials per band. kPeriodic: the knots are taken modulo the band's period L_b, a power
 // of two, as knot & (L_b - 1). With AVX-512 (64-bit multiplies and integer conversions in vectors) GCC
 // runs the loop 8 bands at a time.
-template <int kCount, bool kPeriodic>
+// kPhase (a phase alpha != 0, TurningBandsNoise's `phase`): the slope at a knot is a cos alpha + b sin alpha,
+// a from `keys` (the slope at alpha = 0) and b from `phase_keys`; without it the code is the phase-free one.
+template <int kCount, bool kPeriodic, bool kPhase = false>
 [[gnu::always_inline]] inline void band_profiles(const double* __restrict t, const std::uint64_t* __restrict keys,
                                                  const std::int64_t* __restrict knot_masks, double* __restrict value,
-                                                 double* __restrict slope) {
+                                                 double* __restrict slope,
+                                                 const std::uint64_t* __restrict phase_keys = nullptr,
+                                                 double cos_phase = 1.0, double sin_phase = 0.0) {
   for (int b = 0; b < kCount; ++b) {
     // floor by truncation: exact while |t| < 2^63, far beyond the range where t has a fraction at all.
     auto cell = static_cast<std::int64_t>(t[b]);
@@ -38,7 +42,11 @@ template <int kCount, bool kPeriodic>
       knot0 = cell & knot_masks[b];
       knot1 = (cell + 1) & knot_masks[b];
     }
-    const double g0 = knot_slope(keys[b], knot0), g1 = knot_slope(keys[b], knot1);
+    double g0 = knot_slope(keys[b], knot0), g1 = knot_slope(keys[b], knot1);
+    if constexpr (kPhase) {
+      g0 = g0 * cos_phase + knot_slope(phase_keys[b], knot0) * sin_phase;
+      g1 = g1 * cos_phase + knot_slope(phase_keys[b], knot1) * sin_phase;
+    }
     const double s = quintic_fade(u), ds = quintic_fade_slope(u);
     value[b] = g0 * u * (1.0 - s) + g1 * (u - 1.0) * s;
     slope[b] = g0 * (1.0 - s - u * ds) + g1 * (s + (u - 1.0) * ds);
@@ -60,7 +68,7 @@ template <typename V>
 // multiply-adds (CMakeLists.txt), so the builds give the same bits.
 template <int N>
 struct TurningBandsNoise<N>::Kernel {
-  template <int W, bool kPeriodic>
+  template <int W, bool kPeriodic, bool kPhase>
   [[gnu::always_inline]] static inline void run(const TurningBandsNoise& noise, const Vec<N>& x,
                                                 NoiseSample<N, N - 1>& out) {
     using turning_bands_detail::load_lanes;
@@ -78,8 +86,9 @@ struct TurningBandsNoise<N>::Kernel {
       sum += load_lanes(in, &noise.offsets_[v]);
       __builtin_memcpy(t + v, &sum, sizeof sum);
     }
-    turning_bands_detail::band_profiles<kUsedBands, kPeriodic>(t, noise.keys_.data(), noise.knot_masks_.data(), value,
-                                                                slope);
+    turning_bands_detail::band_profiles<kUsedBands, kPeriodic, kPhase>(t, noise.keys_.data(), noise.knot_masks_.data(),
+                                                                        value, slope, noise.phase_keys_.data(),
+                                                                        noise.cos_phase_, noise.sin_phase_);
     // n_i = K^(-1/2) sum_k p_ik and grad n_i = K^(-1/2) sum_k p'_ik w_ik, k in order; the
     // directions' first N coordinates (zero-padded) in ceil(N / W) vectors.
     const double norm = 1.0 / std::sqrt(static_cast<double>(kBandsPerFunction));
@@ -97,35 +106,40 @@ struct TurningBandsNoise<N>::Kernel {
     }
   }
 
-  template <bool kPeriodic>
+  template <bool kPeriodic, bool kPhase>
   static void baseline(const TurningBandsNoise& noise, const Vec<N>& x, NoiseSample<N, N - 1>& out) {
-    run<2, kPeriodic>(noise, x, out);
+    run<2, kPeriodic, kPhase>(noise, x, out);
   }
 
 #if defined(__x86_64__)
-  template <bool kPeriodic>
+  template <bool kPeriodic, bool kPhase>
   [[gnu::target("avx512f,avx512dq,avx512vl")]] static void avx512(const TurningBandsNoise& noise, const Vec<N>& x,
                                                                   NoiseSample<N, N - 1>& out) {
-    run<8, kPeriodic>(noise, x, out);
+    run<8, kPeriodic, kPhase>(noise, x, out);
   }
 
   // AVX2 without FMA: 4 doubles per vector for the band coordinates and the gradient sums (the
   // hashes' 64-bit multiplies stay scalar); 1.2x the baseline in 3D and 7D (bench/results.md).
-  template <bool kPeriodic>
+  template <bool kPeriodic, bool kPhase>
   [[gnu::target("avx2")]] static void avx2(const TurningBandsNoise& noise, const Vec<N>& x, NoiseSample<N, N - 1>& out) {
-    run<4, kPeriodic>(noise, x, out);
+    run<4, kPeriodic, kPhase>(noise, x, out);
   }
 #endif
 
   // The widest build the CPU runs that `simd` allows (Simd in core/simd.hpp), else the baseline.
-  template <bool kPeriodic>
-  static auto choose(Simd simd) -> decltype(&baseline<kPeriodic>) {
+  template <bool kPeriodic, bool kPhase>
+  static auto choose_build(Simd simd) -> decltype(&baseline<kPeriodic, kPhase>) {
 #if defined(__x86_64__)
-    if (simd == Simd::best && cpu_has_avx512()) return &avx512<kPeriodic>;
-    if (simd != Simd::baseline && cpu_has_avx2()) return &avx2<kPeriodic>;
+    if (simd == Simd::best && cpu_has_avx512()) return &avx512<kPeriodic, kPhase>;
+    if (simd != Simd::baseline && cpu_has_avx2()) return &avx2<kPeriodic, kPhase>;
 #endif
     (void)simd;
-    return &baseline<kPeriodic>;
+    return &baseline<kPeriodic, kPhase>;
+  }
+  // Phase 0 takes the phase-free build: the bits of the noise before phases existed.
+  template <bool kPeriodic>
+  static auto choose(Simd simd, bool rotating) -> decltype(&baseline<kPeriodic, false>) {
+    return rotating ? choose_build<kPeriodic, true>(simd) : choose_build<kPeriodic, false>(simd);
   }
 };
 

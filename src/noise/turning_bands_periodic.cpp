@@ -43,12 +43,12 @@ constexpr int kScaleSteps = 64;
 }  // namespace
 
 template <int N>
-TurningBandsNoise<N>::TurningBandsNoise(std::uint64_t seed, Periodic periodic, Simd simd)
-    : periodic_(true), kernel_(Kernel::template choose<true>(simd)) {
+TurningBandsNoise<N>::TurningBandsNoise(std::uint64_t seed, Periodic periodic, Simd simd, double phase)
+    : periodic_(true), kernel_(Kernel::template choose<true>(simd, phase != 0.0)) {
   if (!(periodic.frequency >= kMinNoiseFrequency && periodic.frequency <= kMaxPeriodicFrequency))
     throw std::invalid_argument(fmt::format("a periodic noise's frequency must be in [2^-50, 2^20] cycles per unit length, got {:g}",
                                             periodic.frequency));
-  draw_bands(seed);
+  draw_bands(seed, phase);
   const Eigen::Matrix<double, kBands, N> frame_rows = directions();
   const BandMoments m = quintic_band_moments();
   const double aperiodic_wavenumber = std::sqrt(m.slope2 / m.value2);
@@ -79,12 +79,12 @@ TurningBandsNoise<N>::TurningBandsNoise(std::uint64_t seed, Periodic periodic, S
   amplitude_ = std::sqrt(N / (m.slope2 * mean_knots2 * std::pow(factorial, 1.0 / (N - 1))));
 }
 
-template TurningBandsNoise<2>::TurningBandsNoise(std::uint64_t, Periodic, Simd);
-template TurningBandsNoise<3>::TurningBandsNoise(std::uint64_t, Periodic, Simd);
-template TurningBandsNoise<4>::TurningBandsNoise(std::uint64_t, Periodic, Simd);
-template TurningBandsNoise<5>::TurningBandsNoise(std::uint64_t, Periodic, Simd);
-template TurningBandsNoise<6>::TurningBandsNoise(std::uint64_t, Periodic, Simd);
-template TurningBandsNoise<7>::TurningBandsNoise(std::uint64_t, Periodic, Simd);
-template TurningBandsNoise<8>::TurningBandsNoise(std::uint64_t, Periodic, Simd);
+template TurningBandsNoise<2>::TurningBandsNoise(std::uint64_t, Periodic, Simd, double);
+template TurningBandsNoise<3>::TurningBandsNoise(std::uint64_t, Periodic, Simd, double);
+template TurningBandsNoise<4>::TurningBandsNoise(std::uint64_t, Periodic, Simd, double);
+template TurningBandsNoise<5>::TurningBandsNoise(std::uint64_t, Periodic, Simd, double);
+template TurningBandsNoise<6>::TurningBandsNoise(std::uint64_t, Periodic, Simd, double);
+template TurningBandsNoise<7>::TurningBandsNoise(std::uint64_t, Periodic, Simd, double);
+template TurningBandsNoise<8>::TurningBandsNoise(std::uint64_t, Periodic, Simd, double);
 
 }  // namespace dfvn

@@ -51,6 +51,9 @@ struct CnjOptions {
   NoiseBasis noise = kDefaultNoiseBasis;
   double step_scale = 0.5;
   double frequency = 0.2;
+  // The field's phase in radians (FieldOptions::phase: rotating gradients); 0, the default, is the field
+  // without a phase.
+  double phase = 0.0;
   // A move of 2^20 lattice spacings is far past any useful jitter (a point moved more than K
   // spacings has left the unit cube unless its streamline loops); the bound keeps every
   // displacement, and the sum of their squares, far from overflow.

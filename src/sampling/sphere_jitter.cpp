@@ -53,7 +53,9 @@ static SphereCnjResult sphere_curl_noise_jitter(int grid, const CnjOptions& requ
   SphereCnjResult result;
   result.trace_time = options.step_scale * average_neighbour_distance(N - 1) * h;
   result.field_frequency = options.frequency / h;
-  const DfvnField<N> field(seed, FieldOptions{options.noise, result.field_frequency, FieldConstraint::on_sphere});
+  FieldOptions field_options{options.noise, result.field_frequency, FieldConstraint::on_sphere};
+  field_options.phase = options.phase;
+  const DfvnField<N> field(seed, field_options);
   const PointSet starts = sphere_start_set(N, grid);
   Coordinates ends(starts.coordinates.size());  // trace_table writes every row
   const TracedPoints traced = trace_table<N>(

@@ -44,6 +44,7 @@ SHARED = {
     "--methods": ["comma list of methods"],
     "--noise": ["noise basis"],
     "--field": ["divergence-free field: dfvn", "curl (bridson et al. 2007's curl noise, 2d and 3d"],
+    "--phase": ["noise phase alpha in radians", "0 is the field without a phase, bit for bit"],
     "--frequency": ["cycles per unit length"],
     "--cycles-per-spacing": ["cycles per lattice spacing"],
     "--steps": ["cnj integration steps m"],
