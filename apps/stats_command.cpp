@@ -181,9 +181,10 @@ struct StatsCommand : Subcommand {
     // The [k/n] counter: each set's statistics, then the spectrum, weighted by their expected costs.
     std::vector<double> stage_weights;
     for (const dfvn::PointSet& set : sets) {
-      for (double w : dfvn::point_statistics_stage_weights(options, set.size(), set.dimension)) stage_weights.push_back(w);
-      // The RDF of the set after its statistics: about four times their cost (as sample weighs it).
-      if (!rdf_path.empty()) stage_weights.push_back(4.0 * static_cast<double>(set.size()) * static_cast<double>(set.dimension));
+      const std::vector<double> weights = dfvn::point_statistics_stage_weights(options, set.size(), set.dimension);
+      stage_weights.insert(stage_weights.end(), weights.begin(), weights.end());
+      // The set's RDF follows its statistics, weighed against their nearest-neighbour stage (the first).
+      if (!rdf_path.empty()) stage_weights.push_back(weights.front() * dfvn::kRdfCostOverStatistics);
     }
     if (!spectrum_prefix.empty())
       stage_weights.push_back(dfvn::expected_spectrum_cost(sets, spectrum_k));

@@ -21,6 +21,7 @@
 #include "dfvn/sampling/poisson_disk.hpp"
 #include "dfvn/stats/geodesic.hpp"
 #include "dfvn/stats/periodic_neighbours.hpp"
+#include "dfvn/stats/point_set_statistics.hpp"
 
 namespace dfvn {
 
@@ -77,17 +78,13 @@ double sampling_generation_cost(Method method) {
   return 1.0;
 }
 
-namespace {
-constexpr double kRdfCost = 4.0;  // the RDF against the statistics, measured alike
-}  // namespace
-
 std::vector<double> sampling_stage_weights(const SampleConfig& config) {
   std::vector<double> weights;
   for (Method method : config.methods) {
     const double points = static_cast<double>(plan_method(config, method).requested);
     weights.push_back(points * sampling_generation_cost(method));
     if (config.compute_statistics) weights.push_back(points);
-    if (config.compute_statistics && config.compute_rdf) weights.push_back(points * kRdfCost);
+    if (config.compute_statistics && config.compute_rdf) weights.push_back(points * kRdfCostOverStatistics);
   }
   return weights;
 }

@@ -45,6 +45,9 @@ PointSetStatistics measure_point_set(const PointSet& points, const PointSetStati
 
 // Stages one measure_point_set call reports.
 int point_statistics_stage_count(const PointSetStatisticsOptions& options);
+// The radial distribution function's cost against the nearest-neighbour statistics of the same set
+// (measured alike); the main job and `stats --rdf` weigh their RDF stages with it.
+inline constexpr double kRdfCostOverStatistics = 4.0;
 // The expected cost of each of those stages for a set of `points` points in `dimension` dimensions,
 // in their order (a model of the operations, calibrated by timing; for the progress line's ETA).
 std::vector<double> point_statistics_stage_weights(const PointSetStatisticsOptions& options, std::size_t points,
