@@ -118,7 +118,7 @@ struct ReproduceCommand : Subcommand {
         ->capture_default_str()
         ->check(CLI::Range(1, 1000));
     s->add_option("--lattice", study_lattice,
-                  "interior (the study's cell-centred lattice, statistics over interior sites) or paper (Table 1's "
+                  "Start lattice: interior (the study's cell-centred lattice, statistics over interior sites) or paper (Table 1's "
                   "lattice linspace(0.05, 0.95, K), leaving points dropped)")
         ->capture_default_str()
         ->check(CLI::IsMember({"interior", "paper"}));
