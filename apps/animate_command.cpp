@@ -87,8 +87,8 @@ struct AnimateCommand : Subcommand {
         ->capture_default_str()
         ->check(kNoiseFrequency);
     cmd->add_option("--step-scale", options.cnj.step_scale,
-                    "CNJ trace time t = C * dbar(N) * lattice spacing, dbar the mean distance to the 3^N-1 "
-                    "lattice neighbours (Section 5.1): frame 0's jitter; a frame lasts DA t; at most 2^20")
+                    "CNJ trace time t = C * dbar(N) * lattice spacing, dbar the mean distance to the 3^N-1 lattice\n"
+                    "neighbours (Section 5.1): frame 0's jitter; a frame lasts DA t; at most 2^20")
         ->capture_default_str()
         ->check(kStepScale);
     cmd->add_option("--out", out, "Output directory (made if missing; its files are listed above)")->capture_default_str();

@@ -28,6 +28,7 @@ if (dim == 2) {
 } else {
   set view 62, 28, 1.0, 1.0
   set view equal xyz
+  set xyplane at 0
   set xrange [0:1]; set yrange [0:1]; set zrange [0:1]
   set xtics 0.5; set ytics 0.5; set ztics 0.5
   set border 4095
