@@ -21,7 +21,7 @@ namespace {
 using dfvn_cli::fail;
 using dfvn_cli::kProgram;
 
-const std::vector<std::string> kSubcommands = {"sample", "field", "reproduce", "stats"};
+const std::vector<std::string> kSubcommands = {"sample", "field", "reproduce", "stats", "animate"};
 
 // CLI11 echoes arguments verbatim in its messages: shorten and escape each one that is long or holds
 // bytes that are not printable ASCII (core/message_text.hpp).
@@ -118,7 +118,8 @@ constexpr const char* kUsageText =
     "  sample      the main job (the default)\n"
     "  field       evaluate the field at points read as text\n"
     "  stats       statistics of any point set (CSV, NPY or dat)\n"
-    "  reproduce   the paper's tables and figures: table1, table2, cnj-study, integration\n"
+    "  animate     CNJ animated as the field's phase turns: frames, their counts, a strip figure\n"
+    "  reproduce   the paper's tables and figures: table1, table2, cnj-study, integration, figure8\n"
     "\n"
     "'dfvn-sample SUBCOMMAND --help' lists a subcommand's options and defaults; --help-all lists every one;\n"
     "--version prints the version.\n";
@@ -150,6 +151,7 @@ int main(int argc, char** argv) {
   const auto field = dfvn_cli::add_field_command(app);
   const auto reproduce = dfvn_cli::add_reproduce_command(app);
   const auto stats = dfvn_cli::add_stats_command(app);
+  const auto animate = dfvn_cli::add_animate_command(app);
 
   dfvn::remove_temporaries_on_signals();
   const std::vector<std::string> given(argv + 1, argv + argc);

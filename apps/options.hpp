@@ -92,5 +92,6 @@ std::unique_ptr<Subcommand> add_sample_command(CLI::App& app);
 std::unique_ptr<Subcommand> add_field_command(CLI::App& app);
 std::unique_ptr<Subcommand> add_reproduce_command(CLI::App& app);
 std::unique_ptr<Subcommand> add_stats_command(CLI::App& app);
+std::unique_ptr<Subcommand> add_animate_command(CLI::App& app);
 
 }  // namespace dfvn_cli

@@ -11,6 +11,7 @@
 #include "dfvn/io/markdown_text.hpp"
 #include "dfvn/plot/gnuplot.hpp"
 #include "dfvn/reproduce/cnj_study.hpp"
+#include "dfvn/reproduce/figure8.hpp"
 #include "dfvn/reproduce/integration.hpp"
 #include "dfvn/reproduce/reproduce.hpp"
 #include "dfvn/sampling/method.hpp"
@@ -23,7 +24,9 @@ namespace {
 constexpr const char* kOutDirHelp = "Output directory (made if missing; its files are listed above)";
 
 struct ReproduceCommand : Subcommand {
-  CommonOptions common1, common2, common3, common4;
+  CommonOptions common1, common2, common3, common4, common5;
+  dfvn::Figure8Config figure8;
+  std::string figure8_lattice = "bcc";
   dfvn::IntegrationConfig integration;
   std::string integration_dims = "3-7";
   std::string integration_methods = "cnj,jitter,pds,sobol,random,halton,lhs";
@@ -115,7 +118,7 @@ struct ReproduceCommand : Subcommand {
         ->capture_default_str()
         ->check(CLI::Range(1, 1000));
     s->add_option("--lattice", study_lattice,
-                  "interior (the study's cell-centred lattice, statistics over interior sites) or paper (Table 1's "
+                  "Start lattice: interior (the study's cell-centred lattice, statistics over interior sites) or paper (Table 1's "
                   "lattice linspace(0.05, 0.95, K), leaving points dropped)")
         ->capture_default_str()
         ->check(CLI::IsMember({"interior", "paper"}));
@@ -143,8 +146,9 @@ struct ReproduceCommand : Subcommand {
                          "(--frequency means cycles per unit length)"}});
     s->callback([this] { run_cnj_study(); });
     add_integration(cmd);
+    add_figure8(cmd);
     // After the subcommands, which would otherwise inherit it.
-    cmd->footer("Subcommands: table1, table2, cnj-study, integration; each has --help ('dfvn-sample reproduce table1\n"
+    cmd->footer("Subcommands: table1, table2, cnj-study, integration, figure8; each has --help ('dfvn-sample reproduce table1\n"
                 "--help'), and 'dfvn-sample --help-all' prints them all.");
   }
 
@@ -200,6 +204,56 @@ struct ReproduceCommand : Subcommand {
     const auto result = dfvn::run_integration(integration, reporter->callback());
     reporter->complete();
     std::fputs(dfvn::markdown_as_plain_text(dfvn::write_integration(result, log)).c_str(), stdout);
+  }
+
+  void add_figure8(CLI::App* cmd) {
+    CLI::App* f = cmd->add_subcommand(
+        "figure8",
+        "Figure 8 (Section 5.4): curl noise jittering animated over F frames in the unit square and cube, drop mode\n"
+        "(the 2023 method: the free field, particles pop in and out of the domain) against the conformant field\n"
+        "(Eq. 13: every particle stays inside), as 'dfvn-sample animate' runs them. Writes DIR/figure8_frames.csv\n"
+        "(animate's frames.csv per dimension and mode), DIR/figure8_tracks.csv (2D tracks near the boundary),\n"
+        "DIR/figure8.md (popping events per 100 frames, count ranges) and (with gnuplot) DIR/figure8.png; prints\n"
+        "figure8.md as plain text.");
+    f->add_option("--out", figure8.out_dir, kOutDirHelp)->capture_default_str();
+    f->add_option("--frames", figure8.frames,
+                  fmt::format("Frames F, frame 0 included, in [2, {}]", dfvn::AnimationOptions::kMaxFrames))
+        ->capture_default_str();
+    f->add_option("--phase-step", figure8.phase_step,
+                  "Phase step DA in radians per frame, in (0, 2 pi]: the field turns by DA per frame, and a frame\n"
+                  "lasts DA times the CNJ trace time")
+        ->capture_default_str();
+    f->add_option("--grid-2d", figure8.grid_2d, "2D: lattice points per axis K of the cubic start lattice")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 4096));
+    f->add_option("--grid-3d", figure8.grid_3d, "3D: lattice points per axis K of the start lattice")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 256));
+    f->add_option("--lattice-3d", figure8_lattice,
+                  "3D start lattice: bcc (the paper's octahedral lattice, K^3 + (K-1)^3 points) or cubic")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"cubic", "bcc"}));
+    f->add_option("--drop-margin", figure8.drop_margin,
+                  "Drop mode: how far the start set reaches beyond the domain, in whole lattice spacings (particles\n"
+                  "enter from there; the cost grows as ((K + 2 margin) / K)^N)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, dfvn::AnimationOptions::kMaxDropMargin));
+    progress.add_to(*f);
+    add_common_options(*f, common5);
+    f->callback([this] { run_figure8(); });
+  }
+
+  void run_figure8() {
+    figure8.lattice_3d = dfvn::parse_start_lattice(figure8_lattice);
+    figure8.seed = common5.seed;
+    figure8.threads = common5.threads;
+    figure8.validate();
+    dfvn::check_figure_prerequisites();  // before the output folder is made
+    dfvn::check_outputs(files_in(figure8.out_dir, dfvn::figure8_output_files()), {figure8.out_dir});
+    dfvn::ProgressReporter* reporter = progress.make(dfvn::figure8_stage_weights(figure8));
+    const auto result = dfvn::run_figure8(figure8, reporter->callback());
+    reporter->complete();
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_figure8(result, log)).c_str(), stdout);
   }
 
   static void log(const std::string& line) { std::fprintf(stderr, "%s: %s\n", kProgram, line.c_str()); }

@@ -63,7 +63,7 @@ struct SampleCommand : Subcommand {
         "Jitter a K^N lattice along the DFVN field (curl noise jittering, Section 5.1) and compare it with\n"
         "random jitter, Poisson disk sampling and Sobol points by nearest-neighbour statistics (CSV).\n"
         "This is the main job: 'dfvn-sample --dim 7 --grid 6' (any options) runs it. Other subcommands:\n"
-        "field, stats, reproduce ('dfvn-sample --help'); each has --help.\n"
+        "field, stats, reproduce, animate ('dfvn-sample --help'); each has --help.\n"
         "Methods: " + dfvn::method_names() + ".");
     add_dimension_option(*cmd, config.dimension, "Dimension N (2..8)")->capture_default_str();
     CLI::Option* grid_option = cmd->add_option("--grid", config.grid, "Lattice points per axis K (>= 2); K^N points")

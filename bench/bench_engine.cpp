@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "dfvn/animate/animation.hpp"
 #include "dfvn/core/hash.hpp"
 #include "dfvn/field/dfvn_field.hpp"
 #include "dfvn/integrate/trace.hpp"
@@ -139,6 +140,39 @@ void BM_CnjConformant7D(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(lattice.point_count()));
 }
 BENCHMARK(BM_CnjConformant7D)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Issue 25's speed target: one animation frame costs no more than one CNJ run of the same lattice.
+// BM_CnjSameLattice: CNJ of the cell-centred K^N lattice in the cube (Arg 0 conformant, 1 drop).
+// BM_AnimateFrames: animate the same lattice for F frames (frame 0 is that CNJ run); one frame is
+// (time(F = 11) - time(F = 1)) / 10. One thread each (the machine is shared: a single thread's time is the
+// steadier measure, and both loops parallelise the same way). bench/animation_frame.md records the runs.
+template <int N>
+void BM_CnjSameLattice(benchmark::State& state) {
+  const int grid = static_cast<int>(state.range(0));
+  CnjOptions options;
+  options.domain = CnjDomain::cube;
+  options.domain_mode = state.range(1) == 0 ? DomainMode::conformant : DomainMode::drop;
+  const LatticeSpec lattice{N, grid, Protocol::unit};
+  for (auto _ : state) benchmark::DoNotOptimize(curl_noise_jitter(lattice, options, 1, 1));
+}
+template <int N>
+void BM_AnimateFrames(benchmark::State& state) {
+  AnimationOptions options;
+  options.dimension = N;
+  options.grid = static_cast<int>(state.range(0));
+  options.cnj.domain_mode = state.range(1) == 0 ? DomainMode::conformant : DomainMode::drop;
+  options.frames = static_cast<int>(state.range(2));
+  for (auto _ : state) benchmark::DoNotOptimize(animate(options, 1, 1));
+}
+BENCHMARK_TEMPLATE(BM_CnjSameLattice, 2)->Args({64, 0})->Args({64, 1})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_TEMPLATE(BM_AnimateFrames, 2)->Args({64, 0, 1})->Args({64, 0, 11})->Args({64, 1, 1})->Args({64, 1, 11})
+    ->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_TEMPLATE(BM_CnjSameLattice, 3)->Args({16, 0})->Args({16, 1})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_TEMPLATE(BM_AnimateFrames, 3)->Args({16, 0, 1})->Args({16, 0, 11})->Args({16, 1, 1})->Args({16, 1, 11})
+    ->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_TEMPLATE(BM_CnjSameLattice, 5)->Args({5, 0})->Args({5, 1})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_TEMPLATE(BM_AnimateFrames, 5)->Args({5, 0, 1})->Args({5, 0, 11})->Args({5, 1, 1})->Args({5, 1, 3})
+    ->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Nearest-neighbour distances of 279,936 jittered 7D points (KD-tree build + k = 2 queries).
 void BM_NearestNeighbours7D(benchmark::State& state) {

@@ -29,6 +29,7 @@ install(TARGETS dfvn EXPORT dfvnTargets
 # reproductions, the plots and the command line's text helpers. Every include is written
 # "dfvn/<folder>/<file>.hpp", so a consumer adds only <prefix>/include to its include path.
 set(DFVN_PUBLIC_HEADERS
+    animate/animation.hpp
     core/bulk_memory.hpp
     core/dimension.hpp
     core/image.hpp

@@ -17,7 +17,7 @@ _dfvn_sample() {
   local program=${words[0]}
   # Subcommands: the first word may name one of the top level's, the next one of its own, and so on.
   local -a path=()
-  local i subcommands="sample field stats reproduce"
+  local i subcommands="sample field stats reproduce animate"
   for ((i = 1; i < cword; i++)); do
     [[ " $subcommands " == *" ${words[i]} "* ]] || break
     path+=("${words[i]}")

@@ -5,6 +5,8 @@
 // the install test checks that the two lists agree.
 #pragma once
 
+#include "dfvn/animate/animation.hpp"
+
 #include "dfvn/core/bulk_memory.hpp"
 #include "dfvn/core/dimension.hpp"
 #include "dfvn/core/image.hpp"

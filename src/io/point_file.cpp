@@ -16,9 +16,6 @@
 
 namespace dfvn {
 
-namespace {
-
-// The .npy header of float64 data of this shape ("3, 2" or "8, 1024, 2").
 void write_npy_header(std::ostream& out, const std::string& shape) {
   static_assert(std::endian::native == std::endian::little, "'<f8' output assumes a little-endian machine");
   std::string header = fmt::format("{{'descr': '<f8', 'fortran_order': False, 'shape': ({}), }}", shape);
@@ -33,6 +30,8 @@ void write_npy_header(std::ostream& out, const std::string& shape) {
   out.write(length_bytes, 2);
   out.write(header.data(), static_cast<std::streamsize>(header.size()));
 }
+
+namespace {
 
 void write_coordinates(std::ostream& out, const PointSet& points) {
   out.write(reinterpret_cast<const char*>(points.coordinates.data()),

@@ -16,6 +16,9 @@
 
 namespace dfvn {
 
+// The .npy header (format 1.0) of float64 data of this shape, e.g. "3, 2" or "8, 1024, 2"; the data
+// follows it in C order.
+void write_npy_header(std::ostream& out, const std::string& shape);
 void write_npy(std::ostream& out, const PointSet& points);
 void write_points_csv(std::ostream& out, const PointSet& points);
 void write_points_dat(std::ostream& out, const PointSet& points);

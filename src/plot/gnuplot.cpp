@@ -34,6 +34,8 @@ std::string_view plot_program_name(PlotProgram program) {
     case PlotProgram::integration: return "integration.gp";
     case PlotProgram::cnj_study: return "cnj_study.gp";
     case PlotProgram::spectrum: return "spectrum.gp";
+    case PlotProgram::animation: return "animation.gp";
+    case PlotProgram::figure8: return "figure8.gp";
   }
   return "?";
 }
@@ -45,6 +47,8 @@ std::string_view plot_program_text(PlotProgram program) {
     case PlotProgram::integration: return kIntegrationProgram;
     case PlotProgram::cnj_study: return kCnjStudyProgram;
     case PlotProgram::spectrum: return kSpectrumProgram;
+    case PlotProgram::animation: return kAnimationProgram;
+    case PlotProgram::figure8: return kFigure8Program;
   }
   return "";
 }

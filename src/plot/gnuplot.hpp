@@ -20,6 +20,8 @@ enum class PlotProgram {
   integration,  // scripts/integration.gp: integration error against points, one figure per dimension
   cnj_study,    // scripts/cnj_study.gp: CNJ against jitter
   spectrum,     // scripts/spectrum.gp: periodogram and radial average
+  animation,    // scripts/animation.gp: animate's strip of frames with trails
+  figure8,      // scripts/figure8.gp: drop against conformant animation, count per frame and tracks
 };
 
 // "figure4.gp", ...; and the program's text as compiled in.

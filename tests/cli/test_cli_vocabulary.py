@@ -57,6 +57,13 @@ SHARED = {
     "--rdf-bins": ["rdf bins"],
     "--rdf-queries": ["rdf query points"],
     "--domain-side": ["[0, s]^n"],
+    "--grid": ["lattice points per axis k"],
+    "--domain-mode": ["conformant: cnj along the field bounded by the domain", "drop: the", "free field, points that leave are dropped"],
+    "--step-scale": ["cnj trace time t = c * dbar(n) * lattice spacing"],
+    "--lattice": ["start lattice"],
+    "--frames": ["frames f, frame 0 included"],
+    "--phase-step": ["phase step da in radians per frame, in (0, 2 pi]"],
+    "--drop-margin": ["drop mode: how far the start set reaches beyond the domain, in whole lattice spacings"],
 }
 # Names whose meaning moved: given, each is refused with a line naming the option to use instead.
 REFUSED = [
@@ -122,7 +129,8 @@ help_all = run("--help-all")
 check(help_all.returncode == 0, "--help-all exits 0")
 parts = sections(help_all.stdout)
 expected = ["dfvn-sample " + s for s in ["sample", "field", "reproduce", "reproduce table1", "reproduce table2",
-                                          "reproduce cnj-study", "reproduce integration", "stats"]]
+                                          "reproduce cnj-study", "reproduce integration", "reproduce figure8", "stats",
+                                          "animate"]]
 check(sorted(parts) == sorted(expected), f"--help-all has a section per subcommand: {sorted(parts)}")
 
 per_section = {name: options(text) for name, text in parts.items()}

@@ -32,7 +32,13 @@ expect() {  # expect LINE WORD...: every WORD is offered
 }
 
 line_shown="dfvn-sample re"; expect "re" reproduce
-line_shown="dfvn-sample "; expect "" sample field stats reproduce
+line_shown="dfvn-sample "; expect "" sample field stats reproduce animate
+line_shown="dfvn-sample an"; expect "an" animate
+line_shown="dfvn-sample animate --lattice "; expect "animate --lattice " cubic bcc
+line_shown="dfvn-sample animate --domain-mode "; expect "animate --domain-mode " conformant drop
+line_shown="dfvn-sample animate --ph"; expect "animate --ph" --phase --phase-step
+line_shown="dfvn-sample reproduce f"; expect "reproduce f" figure8
+line_shown="dfvn-sample reproduce figure8 --lattice-3d "; expect "reproduce figure8 --lattice-3d " cubic bcc
 line_shown="dfvn-sample reproduce t"; expect "reproduce t" table1 table2
 line_shown="dfvn-sample field --d"; expect "field --d" --dim --diagnose --diagnose-points
 line_shown="dfvn-sample --noise "; expect "--noise " turning-bands simplex quintic-gradient
