@@ -194,9 +194,12 @@ DfvnField<N>::DfvnField(std::uint64_t seed, const FieldOptions& options)
 
 template <int N>
 bool DfvnField<N>::in_domain(const Vec<N>& x) const {
+  if (!in_noise_domain(Vec<N>(options_.frequency * x))) return false;
   // The stretch reads the noise at A x, the lift also at the height h(x).
-  const Vec<N> read = x + (stretch_s_minus_1_ * stretch_u_.dot(x)) * stretch_u_;
-  if (!in_noise_domain(Vec<N>(options_.frequency * read))) return false;
+  if (stretch_s_minus_1_ != 0.0) [[unlikely]] {
+    const Vec<N> read = x + (stretch_s_minus_1_ * stretch_u_.dot(x)) * stretch_u_;
+    if (!in_noise_domain(Vec<N>(options_.frequency * read))) return false;
+  }
   if constexpr (N == 2) {
     if (height_) {
       Vec<2> gradient;
