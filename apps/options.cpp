@@ -163,7 +163,7 @@ const CLI::Validator kFiniteReal(
 }  // namespace
 
 void TransformOptions::add_to(CLI::App& cmd) {
-  cmd.add_option("--stretch", stretch,
+  stretch_option = cmd.add_option("--stretch", stretch,
                  "Stretch the noise along a direction, U:S (U comma-separated, any length but not zero; S in\n"
                  "[1e-6, 1e6]): f_i(A x) with A = I + (S - 1) u u^T, u = U / |U|, for every basis, so the noise varies\n"
                  "S times faster along u; still exactly divergence-free, RMS |c| renormalised to 1. Not on the torus.\n"
@@ -175,7 +175,7 @@ void TransformOptions::add_to(CLI::App& cmd) {
                                "along x); N <= 7. Beside --phase the (N+1)D basis turns at that phase. Default: none (the\n"
                                "N-dimensional basis; --time 0 is a different field)")
                     ->check(kFiniteReal);
-  cmd.add_option("--lift", lift,
+  lift_option = cmd.add_option("--lift", lift,
                  "2D only: lift the noise onto a surface z = h(x) (the paper's Section 5.5), f(x) = F(x, h(x)) with\n"
                  "F the first function of the 3D basis; still exactly divergence-free. plane:SX,SY (h = SX x + SY y)\n"
                  "or bump:H,R[,CX,CY] (h = H (1 - r^2)^3 for r = |x - (CX,CY)| / R < 1, else 0; centre default 0,0).\n"
@@ -191,9 +191,9 @@ void TransformOptions::add_to(CLI::App& cmd) {
 dfvn::NoiseTransform TransformOptions::transform() const {
   dfvn::NoiseTransform t;
   try {
-    if (!stretch.empty()) dfvn::parse_stretch(stretch, t);
+    if (!stretch.empty() || (stretch_option != nullptr && stretch_option->count() > 0)) dfvn::parse_stretch(stretch, t);
     if (time_option != nullptr && time_option->count() > 0) t.time = time;
-    if (!lift.empty()) {
+    if (!lift.empty() || (lift_option != nullptr && lift_option->count() > 0)) {
       t.lift = dfvn::parse_lift(lift);
       t.lift.ramp = lift_ramp;
     } else if (ramp_option != nullptr && ramp_option->count() > 0) {

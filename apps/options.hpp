@@ -53,7 +53,9 @@ struct TransformOptions {
   double time = 0.0;
   std::string lift;
   double lift_ramp = 0.0;
+  CLI::Option* stretch_option = nullptr;
   CLI::Option* time_option = nullptr;
+  CLI::Option* lift_option = nullptr;
   CLI::Option* ramp_option = nullptr;
 
   void add_to(CLI::App& cmd);
