@@ -174,7 +174,8 @@ void TransformOptions::add_to(CLI::App& cmd) {
                                "(x, T), T any finite real in the units of x (one cycle of --frequency long along time as\n"
                                "along x); N <= 7. Beside --phase the (N+1)D basis turns at that phase. Default: none (the\n"
                                "N-dimensional basis; --time 0 is a different field)")
-                    ->check(kFiniteReal);
+                    ->check(kFiniteReal)
+                    ->type_name("T");
   lift_option = cmd.add_option("--lift", lift,
                  "2D only: lift the noise onto a surface z = h(x) (the paper's Section 5.5), f(x) = F(x, h(x)) with\n"
                  "F the first function of the 3D basis; still exactly divergence-free. plane:SX,SY (h = SX x + SY y)\n"
@@ -185,7 +186,8 @@ void TransformOptions::add_to(CLI::App& cmd) {
                                "With --lift: the vertical ramp of the paper's Figure 9, F(x, z) + BETA z: on a slope it\n"
                                "adds BETA perp(grad h) to c (motion along the contour lines, BETA in RMS-speed units)")
                     ->capture_default_str()
-                    ->check(kFiniteReal);
+                    ->check(kFiniteReal)
+                    ->type_name("BETA");
 }
 
 dfvn::NoiseTransform TransformOptions::transform() const {
