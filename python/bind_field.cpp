@@ -52,7 +52,12 @@ NoiseTransform noise_transform(const py::object& stretch, const std::optional<do
   if (py::isinstance<py::str>(stretch)) {
     parse_stretch(stretch.cast<std::string>(), t);
   } else if (!stretch.is_none()) {
-    const auto pair = stretch.cast<std::pair<std::vector<double>, double>>();
+    std::pair<std::vector<double>, double> pair;
+    try {
+      pair = stretch.cast<std::pair<std::vector<double>, double>>();
+    } catch (const py::cast_error&) {
+      throw py::value_error("stretch takes 'U:S' or (U, S) with U a sequence of reals and S a real");
+    }
     t.stretch_direction = pair.first;
     t.stretch_factor = pair.second;
   }
