@@ -45,6 +45,14 @@ cmp -s bump.csv flat.csv && bad "--lift bump changed nothing" || ok
 "$bin" --dim 2 --grid 5 --methods cnj --no-stats --points - -q --domain cube --lift plane:1,0 >lift.csv && ok || bad "sample --lift"
 "$bin" field --diagnose --diagnose-points 2000 --dim 3 --time 1.5 --stretch 1,1,0:2 -o diag.csv && ok || bad "diagnose with both"
 
+# The JSON report records the transforms given (and nothing when none is: the recorded reports above).
+"$bin" --dim 3 --grid 4 --methods cnj --domain cube --stretch 0,0,2:4 --time 0.5 -q --no-timing -o /dev/null --json t.json &&
+  /usr/bin/python3 -c '
+import json, sys
+cnj = json.load(open("t.json"))["parameters"]["cnj"]
+assert cnj["stretch"] == {"direction": [0.0, 0.0, 2.0], "factor": 4.0}, cnj
+assert cnj["time"] == 0.5 and "lift" not in cnj, cnj' && ok || bad "the JSON report lacks the transforms"
+
 # Bad input: one line, non-zero exit, no output file.
 check_bad() {
   local name=$1 pattern=$2
