@@ -27,6 +27,7 @@ struct FieldCommand : Subcommand {
   int dimension = 0;  // 0: the input's column count (3 with --diagnose)
   double frequency = 1.0;
   double phase = 0.0;
+  TransformOptions transform;
   std::string noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
   std::string field_kind{dfvn::to_string(dfvn::kDefaultFieldKind)};
   std::string domain = "free";
@@ -59,6 +60,7 @@ struct FieldCommand : Subcommand {
     add_field_kind_option(*cmd, field_kind,
                           "With curl: --domain free or torus;\nthe columns f1..f{N-1} are then psi_1..psi_{N-1}");
     add_phase_option(*cmd, phase);
+    transform.add_to(*cmd);
     cmd->add_option("--domain", domain,
                     "free (R^N), torus ([0,1)^N: the basis's periodic form, period 1 along every axis, at about F\n"
                     "cycles per unit length), cube ([0,1]^N) or ball (its inscribed ball): f_1 turned into the\n"
@@ -106,6 +108,7 @@ struct FieldCommand : Subcommand {
     o.periodic = domain == "torus";
     o.kind = dfvn::parse_field_kind(field_kind);
     o.phase = phase;
+    o.transform = transform.transform();
     if (domain == "cube" || domain == "ball") {
       o.constraint = domain == "cube" ? dfvn::FieldConstraint::inside_cube : dfvn::FieldConstraint::inside_ball;
       o.transition_width = boundary_width;

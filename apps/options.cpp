@@ -150,6 +150,64 @@ void add_phase_option(CLI::App& cmd, double& phase) {
           "RADIANS"));
 }
 
+namespace {
+
+const CLI::Validator kFiniteReal(
+    [](std::string& text) -> std::string {
+      double value = 0.0;
+      if (CLI::detail::lexical_cast(text, value) && std::isfinite(value)) return {};
+      return "must be a finite number, got " + dfvn::quote_for_message(text);
+    },
+    "REAL");
+
+}  // namespace
+
+void TransformOptions::add_to(CLI::App& cmd) {
+  stretch_option = cmd.add_option("--stretch", stretch,
+                 "Stretch the noise along a direction, U:S (U comma-separated, any length but not zero; S in\n"
+                 "[1e-6, 1e6]): f_i(A x) with A = I + (S - 1) u u^T, u = U / |U|, for every basis, so the noise varies\n"
+                 "S times faster along u; still exactly divergence-free, RMS |c| renormalised to 1. Not on the torus.\n"
+                 "Default: none")
+      ->type_name("U:S");
+  time_option = cmd.add_option("--time", time,
+                               "Time as an extra noise dimension: the N-1 functions of the (N+1)-dimensional basis at\n"
+                               "(x, T), T any finite real in the units of x (one cycle of --frequency long along time as\n"
+                               "along x); N <= 7. Beside --phase the (N+1)D basis turns at that phase. Default: none (the\n"
+                               "N-dimensional basis; --time 0 is a different field)")
+                    ->check(kFiniteReal)
+                    ->type_name("T");
+  lift_option = cmd.add_option("--lift", lift,
+                 "2D only: lift the noise onto a surface z = h(x) (the paper's Section 5.5), f(x) = F(x, h(x)) with\n"
+                 "F the first function of the 3D basis; still exactly divergence-free. plane:SX,SY (h = SX x + SY y)\n"
+                 "or bump:H,R[,CX,CY] (h = H (1 - r^2)^3 for r = |x - (CX,CY)| / R < 1, else 0; centre default 0,0).\n"
+                 "Default: none")
+      ->type_name("SPEC");
+  ramp_option = cmd.add_option("--lift-ramp", lift_ramp,
+                               "With --lift: the vertical ramp of the paper's Figure 9, F(x, z) + BETA z: on a slope it\n"
+                               "adds BETA perp(grad h) to c (motion along the contour lines, BETA in RMS-speed units)")
+                    ->capture_default_str()
+                    ->check(kFiniteReal)
+                    ->type_name("BETA");
+}
+
+dfvn::NoiseTransform TransformOptions::transform() const {
+  dfvn::NoiseTransform t;
+  try {
+    if (!stretch.empty() || (stretch_option != nullptr && stretch_option->count() > 0)) dfvn::parse_stretch(stretch, t);
+    if (time_option != nullptr && time_option->count() > 0) t.time = time;
+    if (!lift.empty() || (lift_option != nullptr && lift_option->count() > 0)) {
+      t.lift = dfvn::parse_lift(lift);
+      t.lift.ramp = lift_ramp;
+    } else if (ramp_option != nullptr && ramp_option->count() > 0) {
+      fail("--lift-ramp applies with --lift");
+    }
+    t.validate();
+  } catch (const std::invalid_argument& e) {
+    fail(e.what());
+  }
+  return t;
+}
+
 void refuse_options(CLI::App& cmd, const std::vector<std::pair<std::string, std::string>>& names_and_messages) {
   std::vector<std::pair<const CLI::Option*, std::string>> refused;
   for (const auto& [name, message] : names_and_messages)

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "dfvn/core/progress.hpp"
+#include "dfvn/field/field_transform.hpp"
 
 namespace dfvn_cli {
 
@@ -44,6 +45,22 @@ void add_noise_option(CLI::App& cmd, std::string& noise);
 CLI::Option* add_field_kind_option(CLI::App& cmd, std::string& field, const std::string& consequences);
 // --phase: the noise's phase alpha in radians (rotating gradients; any finite real, default 0).
 void add_phase_option(CLI::App& cmd, double& phase);
+
+// --stretch U:S, --time T, --lift SPEC and --lift-ramp BETA: where the field reads its noise
+// (field/field_transform.hpp). transform() parses them (fail() with one line on a malformed spec).
+struct TransformOptions {
+  std::string stretch;
+  double time = 0.0;
+  std::string lift;
+  double lift_ramp = 0.0;
+  CLI::Option* stretch_option = nullptr;
+  CLI::Option* time_option = nullptr;
+  CLI::Option* lift_option = nullptr;
+  CLI::Option* ramp_option = nullptr;
+
+  void add_to(CLI::App& cmd);
+  dfvn::NoiseTransform transform() const;
+};
 
 // Names that no longer mean what they meant here (issue 24's one vocabulary), each with the line that
 // names the option to use instead: hidden from the help, and giving one (with a value or without)

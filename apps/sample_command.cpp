@@ -56,6 +56,7 @@ struct SampleCommand : Subcommand {
   bool no_timing = false;
   CLI::Option* stats_option = nullptr;
   CLI::Option* format_option = nullptr;
+  TransformOptions transform;
 
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
@@ -152,6 +153,7 @@ struct SampleCommand : Subcommand {
         ->capture_default_str()
         ->check(CLI::IsMember({"none", "newton", "gauss-newton"}));
     add_phase_option(*cmd, config.cnj.phase);
+    transform.add_to(*cmd);
     domain_option = cmd->add_option("--domain", domain,
                                     "Where CNJ's points stay: torus ([0,1)^N with opposite faces identified: a periodic\n"
                                     "field, wrapped traces, the cell-centred lattice; no boundary at all), cube ([0,1]^N)\n"
@@ -259,6 +261,10 @@ struct SampleCommand : Subcommand {
       config.count = count;
       config.grid = dfvn::grid_for_count(config.dimension, count);
     }
+    config.cnj.transform = transform.transform();
+    if (config.cnj.transform.active())
+      dfvn::check_transform_available(config.cnj.transform, config.dimension,
+                                      config.on == dfvn::Surface::none && config.cnj.domain == dfvn::CnjDomain::torus);
     config.compute_statistics = !no_stats;
     config.compute_rdf = !rdf_path.empty();
     config.validate();

@@ -48,6 +48,7 @@ set(DFVN_PUBLIC_HEADERS
     field/dfvn_field.hpp
     field/diagnose.hpp
     field/evaluate_points.hpp
+    field/field_transform.hpp
     integrate/trace.hpp
     integrate/trace_points.hpp
     io/atomic_file.hpp
@@ -60,6 +61,7 @@ set(DFVN_PUBLIC_HEADERS
     noise/gradient_noise.hpp
     noise/noise_domain.hpp
     noise/noise_functions.hpp
+    noise/noise_transforms.hpp
     noise/simplex_noise.hpp
     noise/turning_bands.hpp
     quadrature/genz.hpp

@@ -2,6 +2,8 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -19,9 +21,10 @@ namespace {
 // the bound and its width only for a bounded one.
 FieldOptions field_options(double frequency, const std::string& noise, double phase, const std::string& domain,
                            const std::optional<std::string>& bound, const std::optional<double>& boundary_width,
-                           const std::string& field) {
+                           const std::string& field, const NoiseTransform& transform = {}) {
   FieldOptions o{parse_noise_basis(noise), frequency};
   o.phase = phase;
+  o.transform = transform;
   o.kind = parse_field_kind(field);
   if (o.kind == FieldKind::curl && domain != "free" && domain != "torus")
     throw py::value_error("field 'curl' has no boundary treatment (Bridson's boundaries are not implemented): "
@@ -40,14 +43,46 @@ FieldOptions field_options(double frequency, const std::string& noise, double ph
   return o;
 }
 
+// stretch: None, 'U:S' as on the command line, or (U, S) with U a sequence of reals; time: None or a
+// real; lift: None or 'plane:SX,SY' / 'bump:H,R[,CX,CY]'; lift_ramp: Figure 9's vertical ramp. Bad
+// values raise ValueError with the command line's message.
+NoiseTransform noise_transform(const py::object& stretch, const std::optional<double>& time,
+                               const std::optional<std::string>& lift, double lift_ramp) {
+  NoiseTransform t;
+  if (py::isinstance<py::str>(stretch)) {
+    parse_stretch(stretch.cast<std::string>(), t);
+  } else if (!stretch.is_none()) {
+    std::pair<std::vector<double>, double> pair;
+    try {
+      pair = stretch.cast<std::pair<std::vector<double>, double>>();
+    } catch (const py::cast_error&) {
+      throw py::value_error("stretch takes 'U:S' or (U, S) with U a sequence of reals and S a real");
+    }
+    t.stretch_direction = pair.first;
+    t.stretch_factor = pair.second;
+  }
+  t.time = time;
+  if (lift) {
+    t.lift = parse_lift(*lift);
+    t.lift.ramp = lift_ramp;
+  } else if (lift_ramp != 0.0) {
+    throw py::value_error("lift_ramp applies with lift");
+  }
+  t.validate();
+  return t;
+}
+
 py::tuple field(const PointArray& points, std::uint64_t seed, double frequency, const std::string& noise, double phase,
                 const std::string& domain, const std::optional<std::string>& bound,
-                const std::optional<double>& boundary_width, const std::string& field_kind, int threads) {
+                const std::optional<double>& boundary_width, const std::string& field_kind, int threads,
+                const py::object& stretch, const std::optional<double>& time, const std::optional<std::string>& lift,
+                double lift_ramp) {
   const PointRows in = point_rows(points, kMinDimension, kMaxDimension);
   FieldQuery query;
   query.dimension = in.dimension;
   query.seed = seed;
-  query.field = field_options(frequency, noise, phase, domain, bound, boundary_width, field_kind);
+  query.field = field_options(frequency, noise, phase, domain, bound, boundary_width, field_kind,
+                              noise_transform(stretch, time, lift, lift_ramp));
   query.threads = threads;
   py::array_t<double> velocity = new_array(in.rows, in.dimension);
   py::array_t<double> values = new_array(in.rows, in.dimension - 1);
@@ -64,12 +99,15 @@ py::array_t<double> trace(const PointArray& points, double time, std::uint64_t s
                           const std::string& noise, double phase, const std::string& integrator,
                           const std::optional<std::string>& reprojection, int steps, const std::string& domain,
                           const std::optional<std::string>& bound, const std::optional<double>& boundary_width,
-                          const std::string& field_kind, int threads) {
+                          const std::string& field_kind, int threads, const py::object& stretch,
+                          const std::optional<double>& noise_time, const std::optional<std::string>& lift,
+                          double lift_ramp) {
   const PointRows in = point_rows(points, kMinDimension, kMaxDimension);
   TracePointsQuery query;
   query.dimension = in.dimension;
   query.seed = seed;
-  query.field = field_options(frequency, noise, phase, domain, bound, boundary_width, field_kind);
+  query.field = field_options(frequency, noise, phase, domain, bound, boundary_width, field_kind,
+                              noise_transform(stretch, noise_time, lift, lift_ramp));
   query.trace.integrator = parse_integrator(integrator);
   // Not given: gauss-newton, or none for curl noise, which has no reprojection (the tracer refuses one).
   query.trace.reprojection = parse_reprojection(
@@ -93,7 +131,8 @@ void bind_field(py::module_& module) {
   module.def("field", &field, "points"_a, py::kw_only(), "seed"_a = 1, "frequency"_a = 1.0,
              "noise"_a = std::string(to_string(kDefaultNoiseBasis)), "phase"_a = 0.0, "domain"_a = "free",
              "bound"_a = py::none(), "boundary_width"_a = py::none(),
-             "field"_a = std::string(to_string(kDefaultFieldKind)), "threads"_a = 0,
+             "field"_a = std::string(to_string(kDefaultFieldKind)), "threads"_a = 0, "stretch"_a = py::none(),
+             "time"_a = py::none(), "lift"_a = py::none(), "lift_ramp"_a = 0.0,
              R"(The divergence-free field c(x) = cross(grad f_1, ..., grad f_{N-1}) (Eq. 8) at each point.
 
 points: (n, N) array, N = 2..8 (converted to float64 C order if it is not already).
@@ -109,6 +148,10 @@ ball): f_1 turned into the boundary function so that c is tangent to the boundar
 noise, N = 2 and 3 only: c = (d psi/dy, -d psi/dx), in 3D c = curl (psi_1, psi_2, psi_3) of three
 independent functions of the basis; the same RMS |c| = 1 and frequency; domain 'free' or 'torus'; f
 then holds psi_1..psi_{N-1}). threads: 0 = all cores (the result never depends on it).
+stretch (default None): 'U:S' or (U, S), f_i(A x) with A = I + (S - 1) u u^T, u = U / |U| (as
+`dfvn-sample field --stretch`); time (default None): the (N+1)D basis at (x, time), N <= 7 (`--time`);
+lift (default None, 2D only): 'plane:SX,SY' or 'bump:H,R[,CX,CY]', f(x) = F(x, h(x)) (`--lift`), with
+lift_ramp (default 0.0) the vertical ramp of the paper's Figure 9 (`--lift-ramp`).
 
 Returns (c, f): c (n, N), the field vector (RMS |c| = 1), and f (n, N-1), the noise values f_i(x);
 the same numbers as `dfvn-sample field` writes.)");
@@ -116,13 +159,14 @@ the same numbers as `dfvn-sample field` writes.)");
              "noise"_a = std::string(to_string(kDefaultNoiseBasis)), "phase"_a = 0.0, "integrator"_a = "rk4",
              "reprojection"_a = py::none(), "steps"_a = 1, "domain"_a = "free", "bound"_a = py::none(),
              "boundary_width"_a = py::none(), "field"_a = std::string(to_string(kDefaultFieldKind)), "threads"_a = 0,
+             "stretch"_a = py::none(), "time"_a = py::none(), "lift"_a = py::none(), "lift_ramp"_a = 0.0,
              R"(Trace each point along the field for time t (Algorithm 1); returns where they end, (n, N).
 
 integrator: 'euler' or 'rk4'; reprojection onto the iso-contours of the f_i after every step:
 'none', 'newton' (Eq. 12) or 'gauss-newton' (Eq. 10-11); default 'gauss-newton', and 'none' with
 field='curl', which has no reprojection (its streamlines are not intersections of iso-surfaces; any
-other is refused); steps: M, each of length t / M. The field options (phase included: the field at
-one fixed phase) are those of dfvn.field: on the torus the ends are wrapped into [0,1)^N; in the cube or the
+other is refused); steps: M, each of length t / M. The field options (phase, stretch, time and lift
+included: the field at one fixed phase and time) are those of dfvn.field: on the torus the ends are wrapped into [0,1)^N; in the cube or the
 ball a trace that a long step carries out is traced again with 2, 4, ..., 64 times the steps (or
 stays at its start). t < 0 traces backwards; a trace reaching the edge of the noise domain stops
 there.)");

@@ -40,6 +40,8 @@ struct SampleArguments {
   double max_memory_gib = 0.0;
   std::string field = "dfvn";
   double phase = 0.0;
+  std::optional<std::string> stretch;  // 'U:S' (python/dfvn turns (U, S) into it)
+  std::optional<double> time;
 };
 
 // The dimension's name in messages is the caller's (the engines' `d`, sample's `dim`): python/dfvn
@@ -67,6 +69,9 @@ SampleConfig sample_config(const SampleArguments& a) {
   config.cnj.noise = parse_noise_basis(a.noise);
   config.cnj.frequency = a.cycles_per_spacing;
   config.cnj.phase = a.phase;
+  if (a.stretch) parse_stretch(*a.stretch, config.cnj.transform);
+  config.cnj.transform.time = a.time;
+  config.cnj.transform.validate();
   config.cnj.step_scale = a.step_scale;
   config.cnj.trace.integrator = parse_integrator(a.integrator);
   config.cnj.field = parse_field_kind(a.field);
@@ -165,10 +170,11 @@ void bind_sampling(py::module_& module) {
                const std::string& noise, double cycles_per_spacing, double step_scale, const std::string& integrator,
                const std::optional<std::string>& reprojection, int steps, const std::optional<std::string>& domain,
                const std::string& domain_mode, const std::optional<std::string>& bound, int threads,
-               double max_memory_gib, const std::string& field, double phase) {
+               double max_memory_gib, const std::string& field, double phase,
+               const std::optional<std::string>& stretch, const std::optional<double>& time) {
       return f(SampleArguments{method, d, grid, n, seed, protocol, scramble, radius, ncandidates, noise,
                                cycles_per_spacing, step_scale, integrator, reprojection, steps, domain, domain_mode,
-                               bound, threads, max_memory_gib, field, phase});
+                               bound, threads, max_memory_gib, field, phase, stretch, time});
     };
   };
   const char* doc = "Internal: one point set as `dfvn-sample --points` makes it (python/dfvn/qmc.py calls it).";
@@ -180,7 +186,8 @@ void bind_sampling(py::module_& module) {
                "reprojection"_a = py::none(),
                "steps"_a = CnjOptions::kStepsByDomainMode, "domain"_a = py::none(),
                "domain_mode"_a = std::string(to_string(cnj.domain_mode)), "bound"_a = py::none(), "threads"_a = 0,
-               "max_memory_gib"_a = 0.0, "field"_a = std::string(to_string(cnj.field)), "phase"_a = 0.0, doc);
+               "max_memory_gib"_a = 0.0, "field"_a = std::string(to_string(cnj.field)), "phase"_a = 0.0,
+               "stretch"_a = py::none(), "time"_a = py::none(), doc);
   }
 }
 

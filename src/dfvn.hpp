@@ -27,6 +27,7 @@
 #include "dfvn/field/dfvn_field.hpp"
 #include "dfvn/field/diagnose.hpp"
 #include "dfvn/field/evaluate_points.hpp"
+#include "dfvn/field/field_transform.hpp"
 
 #include "dfvn/integrate/trace.hpp"
 #include "dfvn/integrate/trace_points.hpp"
@@ -42,6 +43,7 @@
 #include "dfvn/noise/gradient_noise.hpp"
 #include "dfvn/noise/noise_domain.hpp"
 #include "dfvn/noise/noise_functions.hpp"
+#include "dfvn/noise/noise_transforms.hpp"
 #include "dfvn/noise/simplex_noise.hpp"
 #include "dfvn/noise/turning_bands.hpp"
 

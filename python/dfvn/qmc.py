@@ -27,6 +27,17 @@ __all__ = ["QMCEngine", "CNJ", "Jitter", "JitterMatched", "PoissonDisk", "LatinH
            "Random", "discrepancy", "sample"]
 
 _DEFAULTS = _core._cnj_defaults
+
+
+def _stretch_spec(stretch):
+    """None, 'U:S' or (U, S) as the command line's 'U:S'."""
+    if stretch is None or isinstance(stretch, str):
+        return stretch
+    try:
+        direction, factor = stretch
+        return ",".join(repr(float(u)) for u in direction) + ":" + repr(float(factor))
+    except (TypeError, ValueError):
+        raise ValueError(f"stretch takes 'U:S' or (U, S), got {stretch!r}") from None
 _MIN_D, _MAX_D = _DEFAULTS["min_d"], _DEFAULTS["max_d"]
 _SEED_RANGE = 2 ** 64
 
@@ -280,6 +291,9 @@ class CNJ(_SetEngine):
     bounded field meets the boundary, 'eq13' or 'ramp'. As `dfvn-sample sample --domain/--domain-mode/--bound`.
     phase (default 0.0): the field's noise phase in radians, any finite real (rotating gradients, as
     `dfvn-sample sample --phase`): period 2 pi; 0 is the field without a phase, bit for bit.
+    stretch (default None): 'U:S' or (U, S), the field's noise read at A x, A = I + (S - 1) u u^T
+    (`dfvn-sample sample --stretch`; not on the torus). time (default None): the (N+1)D basis at
+    (x, time), d <= 7 (`--time`).
     threads (default 0: all cores; the set never depends on it). max_memory_gib (default 0: 80% of the
     machine's): a set that would need more raises ValueError before any work.
 
@@ -293,12 +307,13 @@ class CNJ(_SetEngine):
                  cycles_per_spacing=_DEFAULTS["cycles_per_spacing"], step_scale=_DEFAULTS["step_scale"],
                  integrator=_DEFAULTS["integrator"], reprojection=None, steps=_DEFAULTS["steps"],
                  domain=None, domain_mode=_DEFAULTS["domain_mode"], bound=None, threads=0, max_memory_gib=0.0,
-                 field=_DEFAULTS["field"], phase=0.0, **refused):
+                 field=_DEFAULTS["field"], phase=0.0, stretch=None, time=None, **refused):
         _refuse(self._name, refused)
         super().__init__(d, seed=seed, protocol=protocol, threads=threads, max_memory_gib=max_memory_gib,
                          noise=noise, cycles_per_spacing=float(cycles_per_spacing), step_scale=float(step_scale),
                          integrator=integrator, reprojection=reprojection, steps=_count(steps, "steps", -(1 << 31)),
-                         domain=domain, domain_mode=domain_mode, bound=bound, field=field, phase=float(phase))
+                         domain=domain, domain_mode=domain_mode, bound=bound, field=field, phase=float(phase),
+                         stretch=_stretch_spec(stretch), time=None if time is None else float(time))
 
     def _why_requested(self, requested, k):
         if self._options["domain"] == "ball":
@@ -387,7 +402,7 @@ def sample(method, dim, *, grid=None, n=None, seed=1, protocol="unit", scramble=
            step_scale=_DEFAULTS["step_scale"], integrator=_DEFAULTS["integrator"],
            reprojection=None, steps=_DEFAULTS["steps"], domain=None,
            domain_mode=_DEFAULTS["domain_mode"], bound=None, threads=0, max_memory_gib=0.0, field=_DEFAULTS["field"],
-           phase=0.0, **refused):
+           phase=0.0, stretch=None, time=None, **refused):
     """One point set as an (n, dim) float64 array, the same bits as `dfvn-sample --points DIR --format npy`:
     the first set (or the first points) of the method's engine (dfvn.CNJ, dfvn.Sobol, ...).
 
@@ -402,8 +417,8 @@ def sample(method, dim, *, grid=None, n=None, seed=1, protocol="unit", scramble=
     scramble (default True): Owen-scrambled Sobol, digit-permuted Halton (False: neither). radius
     (default 0: the protocol's), ncandidates (default 30): Poisson disk's. noise, cycles_per_spacing,
     step_scale, integrator, reprojection, steps (default 0: the domain's count), domain (default None),
-    domain_mode (default 'conformant'), bound (default None), field (default 'dfvn'), phase (default 0.0): CNJ's
-    options, defaults and meaning as
+    domain_mode (default 'conformant'), bound (default None), field (default 'dfvn'), phase (default 0.0),
+    stretch (default None), time (default None): CNJ's options, defaults and meaning as
     dfvn.CNJ's (`frequency` is refused: it is now cycles_per_spacing). threads (default 0: all cores; the
     result never depends on it). max_memory_gib (default 0: 80% of the machine's memory): a larger set
     raises ValueError before any work."""
@@ -418,7 +433,7 @@ def sample(method, dim, *, grid=None, n=None, seed=1, protocol="unit", scramble=
     engine = ENGINES[method]
     cnj = dict(noise=noise, cycles_per_spacing=cycles_per_spacing, step_scale=step_scale, integrator=integrator,
                reprojection=reprojection, steps=steps, domain=domain, domain_mode=domain_mode, bound=bound, field=field,
-               phase=float(phase))
+               phase=float(phase), stretch=_stretch_spec(stretch), time=None if time is None else float(time))
     pds = dict(radius=radius, ncandidates=ncandidates)
     if issubclass(engine, _Sequence):
         # The count and the domain under the protocol (Sobol under 'paper' lives on [0, 0.1 K]^dim);

@@ -107,6 +107,15 @@ std::string sampling_json(const SampleConfig& config, const std::vector<Sampling
   if (config.cnj.field != kDefaultFieldKind) parameters["cnj"]["field"] = to_string(config.cnj.field);
   // Only a phase other than 0 is recorded, so that a phase-free run's report stays what it was.
   if (config.cnj.phase != 0.0) parameters["cnj"]["phase"] = config.cnj.phase;
+  // The noise transforms likewise, each only when given.
+  const NoiseTransform& transform = config.cnj.transform;
+  if (!transform.stretch_direction.empty())
+    parameters["cnj"]["stretch"] = {{"direction", transform.stretch_direction}, {"factor", transform.stretch_factor}};
+  if (transform.time) parameters["cnj"]["time"] = *transform.time;
+  if (transform.lift.active())
+    parameters["cnj"]["lift"] = {{"height", transform.lift.kind == LiftSpec::Kind::plane ? "plane" : "bump"},
+                                 {"parameters", transform.lift.parameters},
+                                 {"ramp", transform.lift.ramp}};
   parameters["periodic_statistics"] = config.periodic_statistics;
   // null: the protocol's radius, which each pds result gives under "generation".
   parameters["pds"] = {{"radius", config.pds_radius > 0.0 ? ordered_json(config.pds_radius) : ordered_json(nullptr)},

@@ -36,6 +36,8 @@ void FieldOptions::validate() const {
         "curl noise has no boundary treatment here: --field curl takes no {} constraint (use the free field or the torus)",
         to_string(constraint)));
   check_noise_phase(phase);
+  transform.validate();
+  if (transform.time) check_noise_argument(*transform.time, frequency, "--time");
   parse_bound(to_string(bound));  // an unknown enum value throws
   if (periodic && constraint != FieldConstraint::none)
     throw std::invalid_argument(fmt::format("the torus has no boundary: a periodic field takes no {} constraint",
@@ -94,6 +96,17 @@ Vec<N> curl_of(const std::array<Vec<N>, N - 1>& g, const Vec<N>& g3) {
   return c;
 }
 
+// The field's functions: the basis itself, or its transform at the options' time.
+template <int N>
+std::shared_ptr<const NoiseFunctions<N>> field_noise(const FieldOptions& options, std::uint64_t seed, double time,
+                                                     double lift_ramp = 0.0) {
+  if (!options.transform.active())
+    return options.periodic ? make_periodic_noise_functions<N>(options.noise, seed, options.frequency, options.phase)
+                            : make_noise_functions<N>(options.noise, seed, options.phase);
+  return make_transformed_noise<N>(options.noise, seed, options.phase, options.periodic, options.frequency,
+                                   options.transform, time, lift_ramp);
+}
+
 // The seed of psi_3's basis instance: independent of the seed's own functions ("curl" in ASCII).
 std::uint64_t curl_third_seed(std::uint64_t seed) { return hash_combine(mix64(seed), 0x6375726cULL); }
 
@@ -118,8 +131,7 @@ double curl_amplitude(const NoiseFunctions<N>& noise, const NoiseFunctions<N>& t
 
 template <int N>
 DfvnField<N>::DfvnField(std::uint64_t seed, const FieldOptions& options)
-    : noise_((options.validate(), options.periodic ? make_periodic_noise_functions<N>(options.noise, seed, options.frequency, options.phase)
-                                                   : make_noise_functions<N>(options.noise, seed, options.phase))),
+    : noise_((options.validate(), field_noise<N>(options, seed, options.transform.time.value_or(0.0)))),
       options_(options),
       seed_(seed),
       scale_(options.periodic ? 1.0 : 2.0 * std::numbers::pi * options.frequency / noise_->wavenumber()),
@@ -142,19 +154,69 @@ DfvnField<N>::DfvnField(std::uint64_t seed, const FieldOptions& options)
     // N == 2: c = (d psi/dy, -d psi/dx) is cross<2>(grad psi), the 2D DFVN field, so the amplitude is
     // the basis's (or on the torus the measured one) as for --field dfvn.
   }
+  if (options.transform.active()) {
+    const NoiseTransform& t = options.transform;
+    // Free field: the transformed basis's derived amplitude (noise/noise_transforms.hpp), which the
+    // initialiser took. The torus and 3D curl measure theirs as without a transform, for the functions
+    // at time 0 (on the flat surface for a lift), so that A does not depend on the time.
+    FieldOptions flat = options;
+    flat.transform.lift = {};
+    if (t.lift.active()) flat.transform.time = 0.0;
+    const bool same = !t.time.value_or(0.0) && !t.lift.active();
+    if (options.kind == FieldKind::curl && N == 3) {
+      if constexpr (N == 3) {
+        const auto at0 = same ? noise_ : field_noise<N>(flat, seed, 0.0);
+        curl_noise_ = field_noise<N>(options, curl_third_seed(seed), t.time.value_or(0.0));
+        const auto third0 = same ? curl_noise_ : field_noise<N>(flat, curl_third_seed(seed), 0.0);
+        amplitude_ = curl_amplitude<N>(*at0, *third0,
+                                       options.periodic ? 1.0 : 64.0 * 2.0 * std::numbers::pi / at0->wavenumber());
+      }
+    } else if (options.periodic) {
+      amplitude_ = torus_amplitude<N>(same ? *noise_ : *field_noise<N>(flat, seed, 0.0));
+    }
+    if (t.lift.active()) {
+      height_ = make_height_field(t.lift);
+      // The ramp in RMS-speed units: f gains ramp * h, so n gains (ramp / A) (s h) in the basis's units.
+      if (t.lift.ramp != 0.0) noise_ = field_noise<N>(options, seed, 0.0, t.lift.ramp / amplitude_);
+    }
+    if (!t.stretch_direction.empty()) {
+      for (int j = 0; j < N; ++j) stretch_u_[j] = t.stretch_direction[j];
+      stretch_u_ /= stretch_u_.norm();
+      stretch_s_minus_1_ = t.stretch_factor - 1.0;
+    }
+  }
   // The noise domain bounds F x; each basis is safe for its own scale s = 2 pi F / k_eff there
   // (noise/noise_domain.hpp), which the checks of the tests assert.
-  assert(options.periodic || (scale_ > 0.0 && scale_ <= 2.0 * options.frequency));
+  // A time slice or a lift reads its (N+1)D basis at a scale sqrt((N+1)/N) <= 1.23 times larger: still far
+  // inside the bound's margin (turning bands: sqrt(9) * 1.73 * 1.23 * 2^50 + 1 < 2^53).
+  assert(options.periodic || (scale_ > 0.0 && scale_ <= 2.5 * options.frequency));
 }
 
 template <int N>
 bool DfvnField<N>::in_domain(const Vec<N>& x) const {
-  return in_noise_domain(Vec<N>(options_.frequency * x));
+  if (!in_noise_domain(Vec<N>(options_.frequency * x))) return false;
+  // The stretch reads the noise at A x, the lift also at the height h(x).
+  if (stretch_s_minus_1_ != 0.0) [[unlikely]] {
+    const Vec<N> read = x + (stretch_s_minus_1_ * stretch_u_.dot(x)) * stretch_u_;
+    if (!in_noise_domain(Vec<N>(options_.frequency * read))) return false;
+  }
+  if constexpr (N == 2) {
+    if (height_) {
+      Vec<2> gradient;
+      if (!is_noise_argument(options_.frequency * height_->height(x, gradient))) return false;
+    }
+  }
+  return true;
 }
 
 template <int N>
 void DfvnField<N>::check_in_domain(const Vec<N>& x, std::string_view what) const {
   for (int j = 0; j < N; ++j) check_noise_argument(x[j], options_.frequency, fmt::format("{}, column {}", what, j + 1));
+  if (!in_domain(x))
+    throw std::invalid_argument(fmt::format(
+        "{}: the point is outside the noise domain where the field reads it (the stretched point A x or the lift's "
+        "height h(x), times the frequency, must be below 2^50 in magnitude)",
+        what));
 }
 
 template <int N>

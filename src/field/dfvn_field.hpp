@@ -8,6 +8,7 @@
 
 #include "dfvn/core/dimension.hpp"
 #include "dfvn/field/constraint.hpp"
+#include "dfvn/field/field_transform.hpp"
 #include "dfvn/noise/noise_functions.hpp"
 
 namespace dfvn {
@@ -50,6 +51,9 @@ struct FieldOptions {
   // turns in its own seeded plane, so the field has period 2 pi in alpha, and for every fixed alpha its
   // f_i are C2 and c is exactly divergence-free with RMS |c| = 1. 0 is the field before phases existed.
   double phase = 0.0;
+  // Where the noise is read (field/field_transform.hpp): --stretch (f_i(A x)), --time (the (N+1)D basis
+  // at (x, t)), --lift (2D: F(x, h(x))). None of them: the field before they existed, bit for bit.
+  NoiseTransform transform{};
 
   // throws std::invalid_argument unless the frequency is finite and positive, the phase finite, the
   // constraint's transition width is in (0, 1/4], a periodic field has a periodic basis and no constraint,
@@ -80,7 +84,14 @@ struct FieldOptions {
 // three gradient components, the cross terms have mean 0); the quintic gradient basis and simplex are
 // not exactly isotropic and turning bands is isotropic only over seeds, which is why it is measured.
 // The tests check RMS |c| within 3% of 1 on 10^5 uniform random points for every basis.
-// evaluate() fills value/gradient with psi_1..psi_{N-1} (for the diagnosis' k_eff), velocity with c.
+// A transform (options.transform: stretch, time, lift) changes the functions n_i; their amplitude is
+// derived in closed form (noise/noise_transforms.hpp: the stretch's ((S^2 (N-1) + 1) / N)^(-1/(2(N-1))),
+// the slice's from the (N+1)D basis's), and s = 2 pi F / k_eff with the transformed basis's k_eff (a
+// stretch keeps the basis's, so f_i(x) is the unstretched f_i at A x up to that constant; a time slice
+// or a lift reports k_{N+1} sqrt(N / (N+1))). On the torus and for 3D curl noise A is measured as above,
+// for the functions at time 0, so that it does not depend on the time and the field is continuous in it.
+// A lift keeps the amplitude of its flat surface (h = 0): a slope raises the speed, as the paper's
+// Figure 9 shows, and its vertical ramp adds ramp * perp(grad h) to c in RMS-speed units.
 template <int N>
 class DfvnField {
  public:
@@ -118,6 +129,9 @@ class DfvnField {
   std::shared_ptr<const NoiseFunctions<N>> noise_;  // shared: a field is cheap to copy
   std::shared_ptr<const NoiseFunctions<N>> curl_noise_;  // curl in 3D: psi_3 is its first function
   std::shared_ptr<const ConstraintFunction<N>> constraint_;  // null: the free field
+  std::shared_ptr<const HeightField> height_;  // a lift's surface (null without --lift), for the domain check
+  Vec<N> stretch_u_ = Vec<N>::Zero();           // the stretch's unit direction (0 without --stretch)
+  double stretch_s_minus_1_ = 0.0;
   FieldOptions options_;
   std::uint64_t seed_;
   double scale_;

@@ -57,6 +57,7 @@ void CnjOptions::validate() const {
     throw std::invalid_argument(fmt::format("step scale must be in (0, 2^20], got {:g}", step_scale));
   check_noise_frequency(frequency);
   check_noise_phase(phase);
+  transform.validate();
   parse_noise_basis(to_string(noise));  // an unknown enum value throws
   parse_cnj_domain(to_string(domain));
   parse_bound(to_string(bound));
@@ -141,7 +142,8 @@ CnjResult curl_noise_jitter(const LatticeSpec& requested_lattice, const CnjOptio
   result.trace_time = options.step_scale * average_neighbour_distance(N) * lattice.spacing();
   const DfvnField<N> field(seed, FieldOptions{options.noise, options.frequency / lattice.spacing(),
                                               field_constraint(options), cnj_transition_width(options, lattice),
-                                              options.bound, torus, options.field, options.phase});
+                                              options.bound, torus, options.field, options.phase,
+                                              options.transform});
   result.field_frequency = field.frequency();
   const Box domain{0.0, 1.0, options.domain == CnjDomain::ball};
   const std::vector<double> sites = cnj_start_sites(lattice, options.domain);

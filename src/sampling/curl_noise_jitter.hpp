@@ -54,6 +54,8 @@ struct CnjOptions {
   // The field's phase in radians (FieldOptions::phase: rotating gradients); 0, the default, is the field
   // without a phase.
   double phase = 0.0;
+  // Where the field reads its noise (FieldOptions::transform: --stretch, --time; field/field_transform.hpp).
+  NoiseTransform transform{};
   // A move of 2^20 lattice spacings is far past any useful jitter (a point moved more than K
   // spacings has left the unit cube unless its streamline loops); the bound keeps every
   // displacement, and the sum of their squares, far from overflow.

@@ -55,6 +55,7 @@ static SphereCnjResult sphere_curl_noise_jitter(int grid, const CnjOptions& requ
   result.field_frequency = options.frequency / h;
   FieldOptions field_options{options.noise, result.field_frequency, FieldConstraint::on_sphere};
   field_options.phase = options.phase;
+  field_options.transform = options.transform;
   const DfvnField<N> field(seed, field_options);
   const PointSet starts = sphere_start_set(N, grid);
   Coordinates ends(starts.coordinates.size());  // trace_table writes every row

@@ -1,0 +1,78 @@
+// Where the field reads its noise (FieldOptions::transform): a stretch, a time slice and a lift, the
+// three wrappers of noise/noise_transforms.hpp, parsed from the command line's specs and built for a
+// field. All three leave the field exactly divergence-free (the f_i stay C2); the field renormalises
+// RMS |c| to 1 for each (field/dfvn_field.hpp says how).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/noise/noise_functions.hpp"
+#include "dfvn/noise/noise_transforms.hpp"
+
+namespace dfvn {
+
+// A factor S outside [kMinStretch, kMaxStretch] is refused: A = I + (S - 1) u u^T is then nearly singular
+// or stretches the noise argument by more than 10^6 (noise/noise_domain.hpp bounds it).
+inline constexpr double kMinStretch = 1e-6;
+inline constexpr double kMaxStretch = 1e6;
+
+// The lift's height fields, in the field's length units (all C2):
+// - plane:SX,SY   h(x) = SX x_1 + SY x_2 (a constant slope; a lift onto it is the stretch
+//                 A = I + (sqrt(1 + |grad h|^2) - 1) n n^T along n = grad h / |grad h|, up to a rotation
+//                 of the noise: F is read at (x, grad h . x));
+// - bump:H,R[,CX,CY]  h(x) = H (1 - r^2)^3 for r = |x - (CX, CY)| / R < 1, else 0 (value, slope and
+//                 curvature 0 at r = 1, so C2; a polynomial in r^2, so smooth at the centre); R > 0.
+struct LiftSpec {
+  enum class Kind { none, plane, bump } kind = Kind::none;
+  std::vector<double> parameters;  // plane: SX, SY; bump: H, R, CX, CY
+  // The vertical ramp of the paper's Figure 9: F(x, z) + ramp z, ramp in RMS-speed units (the speed
+  // that a unit slope adds, along the contour lines of h). 0: Figure 10's lift, no ramp.
+  double ramp = 0.0;
+  bool active() const { return kind != Kind::none; }
+};
+
+struct NoiseTransform {
+  // --stretch U:S: f_i(A x) with A = I + (S - 1) u u^T, u = U / |U|; empty direction: no stretch.
+  std::vector<double> stretch_direction;
+  double stretch_factor = 1.0;
+  // --time T: the N-1 functions of the (N+1)-dimensional basis at (x, T), T in the same length units as x.
+  std::optional<double> time;
+  // --lift (2D only): f(x) = F(x, h(x)) for the first function F of the 3D basis.
+  LiftSpec lift;
+
+  bool active() const { return !stretch_direction.empty() || time.has_value() || lift.active(); }
+  // Throws std::invalid_argument with one line for a zero or non-finite direction, S outside
+  // [kMinStretch, kMaxStretch], a non-finite time, a lift with bad parameters, a lift beside a time
+  // (both use the third noise dimension).
+  void validate() const;
+};
+
+// Throws std::invalid_argument where `transform` is not available in `dimension` (--time with N = 8,
+// --lift outside 2D, a stretch direction of another length) or on the torus (`periodic`: a stretch or a
+// lift breaks the period), with one line saying why. make_transformed_noise checks the same.
+void check_transform_available(const NoiseTransform& transform, int dimension, bool periodic);
+
+// "U:S" (U comma-separated, any length, e.g. "1,0:2"), into `transform`; throws std::invalid_argument.
+void parse_stretch(std::string_view text, NoiseTransform& transform);
+// "plane:SX,SY" or "bump:H,R[,CX,CY]"; throws std::invalid_argument.
+LiftSpec parse_lift(std::string_view text);
+std::shared_ptr<const HeightField> make_height_field(const LiftSpec& spec);
+
+// The N-1 functions the field reads for `transform`, at time `time` (the transform's own time is
+// ignored: the field asks for time 0 too, to measure an amplitude that does not depend on the time).
+// `periodic`: the basis's periodic form at `frequency` (the torus); else the free basis, and `frequency`
+// sets the scale s = 2 pi F / k_eff that converts the time and the heights into the basis's units.
+// Throws std::invalid_argument where the transform is not available (its message says why).
+template <int N>
+std::shared_ptr<const NoiseFunctions<N>> make_transformed_noise(NoiseBasis basis, std::uint64_t seed, double phase,
+                                                                bool periodic, double frequency,
+                                                                const NoiseTransform& transform, double time,
+                                                                double lift_ramp_in_basis_units = 0.0);
+
+}  // namespace dfvn
