@@ -37,12 +37,12 @@ namespace {
 // order and scattered back to the input's indices.
 template <int N>
 std::vector<double> nearest_neighbour_distances_nanoflann(const PointSet& points, int threads, const FractionProgress& progress) {
-  const LeafOrderedTree<N> ordered(points, nearest_other::kLeafSize);
-  const nearest_other::Index<N> index(ordered);
-  const PointSet& rows = ordered.sorted();
+  const PointSetAdaptor<N> adaptor{points};
+  const KdTree<N> tree(N, adaptor, kd_tree_params(nearest_other::kLeafSize));  // built by its constructor
+  const nearest_other::Index<N> index(points, tree);
   const auto kernel = nearest_other::nearest_rows_kernel<N>(Simd::best);
   std::vector<double> distances(points.size());
-  const std::vector<std::uint32_t>& original = ordered.original();
+  const std::uint32_t* original = index.original();
   const auto& leaves = index.leaves();
   // Chunks of leaves; progress counts leaves done over leaves.
   neighbour_loop::for_every_chunk(leaves.size(), threads, progress, [&](std::size_t begin, std::size_t end) {
@@ -50,7 +50,8 @@ std::vector<double> nearest_neighbour_distances_nanoflann(const PointSet& points
     const std::size_t first = leaves[begin].first, last = leaves[end - 1].first + leaves[end - 1].count;
     std::vector<std::uint32_t> nearest(last - first);
     kernel(index, begin, end, nearest.data(), scratch);
-    for (std::size_t r = first; r < last; ++r) distances[original[r]] = distance_between(rows, r, nearest[r - first]);
+    for (std::size_t r = first; r < last; ++r)
+      distances[original[r]] = distance_between(points, original[r], original[nearest[r - first]]);
   });
   return distances;
 }

@@ -1,4 +1,4 @@
-// The exact nearest OTHER point of every row of a LeafOrderedTree (stats/kd_tree.hpp), private to
+// The exact nearest OTHER point of every point of a nanoflann KD-tree (stats/kd_tree.hpp), private to
 // stats/: a search specialised for that one question (k = 1 with the point itself excluded, the dimension
 // a template parameter, no per-query allocation, no recursion) over a flat copy of nanoflann's tree.
 // Rows are queried leaf after leaf; each query first takes its nearest point within its own leaf (a
@@ -17,10 +17,10 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
-#include <memory>
 #include <stdexcept>
 #include <vector>
 
+#include "dfvn/core/point_set.hpp"
 #include "dfvn/core/simd.hpp"
 #include "dfvn/stats/kd_tree.hpp"
 
@@ -49,22 +49,21 @@ class Index {
     std::uint32_t node = 0;              // its node
   };
 
-  explicit Index(const LeafOrderedTree<N>& ordered) : rows_(ordered.sorted().coordinates.data()) {
-    convert(ordered.tree().root_node, 1);
+  // `tree`: built over `points` (both must outlive the index); its leaves' points are copied in leaf order.
+  Index(const PointSet& points, const KdTree<N>& tree) : original_(tree.vAcc.data()) {
+    convert(tree.root_node, 1);
     // nanoflann numbers its leaves' points depth first: leaf after leaf, consecutive rows (the callers rely on it).
     for (std::size_t l = 1; l < leaves_.size(); ++l)
       if (leaves_[l].first != leaves_[l - 1].first + leaves_[l - 1].count) throw std::logic_error("KD-tree leaves out of row order");
     std::size_t blocks = 0;
     for (const Leaf& leaf : leaves_) blocks += (leaf.count + kLanes - 1) / kLanes;
-    block_storage_ = std::make_unique<double[]>(blocks * N * kLanes + kLanes);  // + kLanes: room to align
-    blocks_ = block_storage_.get();
-    while (reinterpret_cast<std::uintptr_t>(blocks_) % (kLanes * sizeof(double)) != 0) ++blocks_;
+    blocks_ = Coordinates(blocks * N * kLanes);  // without zero-fill, on huge pages when large (core/bulk_memory.hpp)
     for (const Leaf& leaf : leaves_)
       for (std::uint32_t j = 0; j < (leaf.count + kLanes - 1) / kLanes * kLanes; ++j) {
-        double* block = blocks_ + (leaf.block + j / kLanes) * N * kLanes;
+        double* block = blocks_.data() + (leaf.block + j / kLanes) * N * kLanes;
+        const double* x = j < leaf.count ? points.point(original_[leaf.first + j]) : nullptr;
         for (int k = 0; k < N; ++k)  // padding lanes at +inf: their squared distance is +inf, never a minimum
-          block[k * kLanes + j % kLanes] =
-              j < leaf.count ? rows_[(leaf.first + j) * N + k] : std::numeric_limits<double>::infinity();
+          block[k * kLanes + j % kLanes] = x ? x[k] : std::numeric_limits<double>::infinity();
       }
   }
   Index(const Index&) = delete;
@@ -72,13 +71,14 @@ class Index {
 
   const std::vector<Node>& nodes() const { return nodes_; }
   const std::vector<Leaf>& leaves() const { return leaves_; }
-  const double* rows() const { return rows_; }
-  const double* blocks() const { return blocks_; }
+  // Row r (the rows are the leaves' points, leaf after leaf) is input point original()[r].
+  const std::uint32_t* original() const { return original_; }
+  const double* blocks() const { return blocks_.data(); }
   int depth() const { return depth_; }
   std::uint32_t largest_leaf() const { return largest_leaf_; }
 
  private:
-  using TreeNode = typename LeafOrderedTree<N>::Tree::Node;
+  using TreeNode = typename KdTree<N>::Node;
 
   // Copies the subtree of `node`; returns its index.
   std::uint32_t convert(const TreeNode* node, int depth) {
@@ -106,11 +106,10 @@ class Index {
     return self;
   }
 
-  const double* rows_;
+  const std::uint32_t* original_;
   std::vector<Node> nodes_;
   std::vector<Leaf> leaves_;
-  std::unique_ptr<double[]> block_storage_;
-  double* blocks_ = nullptr;
+  Coordinates blocks_;
   int depth_ = 0;
   std::uint32_t largest_leaf_ = 0;
 };
@@ -141,7 +140,6 @@ template <int N>
                                                 std::uint32_t* nearest, Scratch<N>& s) {
   const auto* nodes = index.nodes().data();
   const auto* leaves = index.leaves().data();
-  const double* rows = index.rows();
   const double* blocks = index.blocks();
   const std::uint32_t base = leaves[begin].first;
   StackEntry<N>* stack = s.stack.data();
@@ -149,7 +147,8 @@ template <int N>
     const auto& own = leaves[a];
     for (std::uint32_t r = own.first; r < own.first + own.count; ++r) {
       double q[N];
-      for (int k = 0; k < N; ++k) q[k] = rows[r * N + k];
+      const std::uint32_t j = r - own.first;
+      for (int k = 0; k < N; ++k) q[k] = blocks[(static_cast<std::size_t>(own.block) + j / kLanes) * N * kLanes + k * kLanes + j % kLanes];
       double best = std::numeric_limits<double>::infinity();
       std::uint32_t best_row = r;
       double limit = best;
