@@ -2,14 +2,15 @@
 // stats/: a search specialised for that one question (k = 1 with the point itself excluded, the dimension
 // a template parameter, no per-query allocation, no recursion) over a flat copy of nanoflann's tree.
 // Rows are queried leaf after leaf; each query first takes its nearest point within its own leaf (a
-// tight radius before the descent) and skips that leaf later. Leaves store their points four to a
-// block, coordinate by coordinate, so that one vector instruction takes a coordinate of four points.
+// tight radius before the descent) and skips that leaf later; a leaf that the descent reaches is
+// scanned only if its bounding box is within the radius. Leaves store their points four to a block,
+// coordinate by coordinate, so that one vector instruction takes a coordinate of four points.
 //
 // The answer is the same as nanoflann's k = 2 self-query: the minimum over the other points of the
 // squared distance summed over axes in order, each (x - q)^2 rounded as distance_between() rounds it
 // (every lane sums its own axes in order; no fused multiply-adds: see CMakeLists.txt), so the distance
-// of the row found is the same bits whichever of two tied rows is found. A subtree is pruned only when
-// its lower bound exceeds the best squared distance by a relative margin (1e-9) far above the bound's
+// of the row found is the same bits whichever of two tied rows is found. A subtree or leaf is pruned only
+// when its lower bound exceeds the best squared distance by a relative margin (1e-9) far above the bound's
 // rounding (a few units in the last place), so no closer point is ever pruned.
 #pragma once
 
@@ -65,6 +66,16 @@ class Index {
         for (int k = 0; k < N; ++k)  // padding lanes at +inf: their squared distance is +inf, never a minimum
           block[k * kLanes + j % kLanes] = x ? x[k] : std::numeric_limits<double>::infinity();
       }
+    leaf_boxes_.assign(leaves_.size() * 2 * kBoxLanes, 0.0);
+    for (std::size_t l = 0; l < leaves_.size(); ++l) {
+      double* box = leaf_boxes_.data() + l * 2 * kBoxLanes;
+      for (int k = 0; k < N; ++k) box[k] = std::numeric_limits<double>::infinity(), box[kBoxLanes + k] = -box[k];
+      for (std::uint32_t r = leaves_[l].first; r < leaves_[l].first + leaves_[l].count; ++r)
+        for (int k = 0; k < N; ++k) {
+          const double x = points.point(original_[r])[k];
+          box[k] = std::min(box[k], x), box[kBoxLanes + k] = std::max(box[kBoxLanes + k], x);
+        }
+    }
   }
   Index(const Index&) = delete;
   Index& operator=(const Index&) = delete;
@@ -74,6 +85,9 @@ class Index {
   // Row r (the rows are the leaves' points, leaf after leaf) is input point original()[r].
   const std::uint32_t* original() const { return original_; }
   const double* blocks() const { return blocks_.data(); }
+  // Leaf l's bounding box: N lower coordinates padded with zeros to kBoxLanes, then the N upper ones.
+  static constexpr int kBoxLanes = (N + kLanes - 1) / kLanes * kLanes;
+  const double* leaf_box(std::size_t l) const { return leaf_boxes_.data() + l * 2 * kBoxLanes; }
   int depth() const { return depth_; }
   std::uint32_t largest_leaf() const { return largest_leaf_; }
 
@@ -110,6 +124,7 @@ class Index {
   std::vector<Node> nodes_;
   std::vector<Leaf> leaves_;
   Coordinates blocks_;
+  std::vector<double> leaf_boxes_;
   int depth_ = 0;
   std::uint32_t largest_leaf_ = 0;
 };
@@ -146,7 +161,8 @@ template <int N>
   for (std::size_t a = begin; a < end; ++a) {
     const auto& own = leaves[a];
     for (std::uint32_t r = own.first; r < own.first + own.count; ++r) {
-      double q[N];
+      constexpr int kBox = Index<N>::kBoxLanes;
+      alignas(32) double q[kBox] = {};  // padded with zeros, as the leaves' boxes
       const std::uint32_t j = r - own.first;
       for (int k = 0; k < N; ++k) q[k] = blocks[(static_cast<std::size_t>(own.block) + j / kLanes) * N * kLanes + k * kLanes + j % kLanes];
       double best = std::numeric_limits<double>::infinity();
@@ -200,7 +216,22 @@ template <int N>
           }
           node = first;
         }
-        if (const std::uint32_t l = nodes[node].leaf; l != a) scan(l);
+        if (const std::uint32_t l = nodes[node].leaf; l != a) {
+          // The leaf's bounding box first: its squared distance (summed in any order) is at most any of its points'.
+          const double* box = index.leaf_box(l);
+          Vec4 sum = {};
+          for (int v = 0; v < kBox; v += kLanes) {
+            Vec4 lo, hi, qv;
+            std::memcpy(&lo, box + v, sizeof lo);
+            std::memcpy(&hi, box + kBox + v, sizeof hi);
+            std::memcpy(&qv, q + v, sizeof qv);
+            const Vec4 below = lo - qv, above = qv - hi;
+            Vec4 gap = below > above ? below : above;
+            gap = gap > Vec4{} ? gap : Vec4{};
+            sum = sum + gap * gap;
+          }
+          if ((sum[0] + sum[1]) + (sum[2] + sum[3]) <= limit) scan(l);
+        }
         for (;;) {  // the deepest subtree left that may still hold a nearer point
           if (top == 0) goto done;
           const StackEntry<N>& e = stack[--top];
