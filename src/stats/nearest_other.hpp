@@ -1,9 +1,10 @@
 // The exact nearest OTHER point of every point of a nanoflann KD-tree (stats/kd_tree.hpp), private to
 // stats/: a search specialised for that one question (k = 1 with the point itself excluded, the dimension
 // a template parameter, no per-query allocation, no recursion) over a flat copy of nanoflann's tree.
-// Rows are queried leaf after leaf; each query first takes its nearest point within its own leaf (a
-// tight radius before the descent) and skips that leaf later; a leaf that the descent reaches is
-// scanned only if its bounding box is within the radius. Leaves store their points four to a block,
+// Rows are queried leaf after leaf; each query first takes its nearest point within its own leaf and
+// within the leaf where the previous query found its nearest point (a tight radius before the descent)
+// and skips those leaves later; a leaf that the descent reaches is scanned only if its bounding box is
+// within the radius. Leaves store their points four to a block,
 // coordinate by coordinate, so that one vector instruction takes a coordinate of four points.
 //
 // The answer is the same as nanoflann's k = 2 self-query: the minimum over the other points of the
@@ -66,6 +67,9 @@ class Index {
         for (int k = 0; k < N; ++k)  // padding lanes at +inf: their squared distance is +inf, never a minimum
           block[k * kLanes + j % kLanes] = x ? x[k] : std::numeric_limits<double>::infinity();
       }
+    leaf_of_row_.resize(leaves_.empty() ? 0 : leaves_.back().first + leaves_.back().count);
+    for (std::size_t l = 0; l < leaves_.size(); ++l)
+      std::fill_n(leaf_of_row_.begin() + leaves_[l].first, leaves_[l].count, static_cast<std::uint32_t>(l));
     leaf_boxes_.assign(leaves_.size() * 2 * kBoxLanes, 0.0);
     for (std::size_t l = 0; l < leaves_.size(); ++l) {
       double* box = leaf_boxes_.data() + l * 2 * kBoxLanes;
@@ -88,6 +92,7 @@ class Index {
   // Leaf l's bounding box: N lower coordinates padded with zeros to kBoxLanes, then the N upper ones.
   static constexpr int kBoxLanes = (N + kLanes - 1) / kLanes * kLanes;
   const double* leaf_box(std::size_t l) const { return leaf_boxes_.data() + l * 2 * kBoxLanes; }
+  const std::uint32_t* leaf_of_row() const { return leaf_of_row_.data(); }
   int depth() const { return depth_; }
   std::uint32_t largest_leaf() const { return largest_leaf_; }
 
@@ -125,6 +130,7 @@ class Index {
   std::vector<Leaf> leaves_;
   Coordinates blocks_;
   std::vector<double> leaf_boxes_;
+  std::vector<std::uint32_t> leaf_of_row_;
   int depth_ = 0;
   std::uint32_t largest_leaf_ = 0;
 };
@@ -132,6 +138,25 @@ class Index {
 // GCC's generic vectors: two SSE2 instructions each in the baseline build, one AVX instruction each in
 // the function built for AVX2 that this code is inlined into.
 typedef double Vec4 __attribute__((vector_size(kLanes * sizeof(double))));
+
+// The squared distance from point q (kBoxLanes coordinates, zero-padded) to the box `box` (Index::leaf_box),
+// summed in no particular order.
+template <int N>
+[[gnu::always_inline]] inline double box_distance(const double* q, const double* box) {
+  constexpr int kBox = Index<N>::kBoxLanes;
+  Vec4 sum = {};
+  for (int v = 0; v < kBox; v += kLanes) {
+    Vec4 lo, hi, qv;
+    std::memcpy(&lo, box + v, sizeof lo);
+    std::memcpy(&hi, box + kBox + v, sizeof hi);
+    std::memcpy(&qv, q + v, sizeof qv);
+    const Vec4 below = lo - qv, above = qv - hi;
+    Vec4 gap = below > above ? below : above;
+    gap = gap > Vec4{} ? gap : Vec4{};
+    sum = sum + gap * gap;
+  }
+  return (sum[0] + sum[1]) + (sum[2] + sum[3]);
+}
 
 // A subtree left for later: its root, the lower bound of its squared distance, and that bound's terms per axis.
 template <int N>
@@ -158,6 +183,8 @@ template <int N>
   const double* blocks = index.blocks();
   const std::uint32_t base = leaves[begin].first;
   StackEntry<N>* stack = s.stack.data();
+  const std::uint32_t* leaf_of_row = index.leaf_of_row();
+  std::uint32_t warm = static_cast<std::uint32_t>(begin);  // the leaf of the previous query's nearest point
   for (std::size_t a = begin; a < end; ++a) {
     const auto& own = leaves[a];
     for (std::uint32_t r = own.first; r < own.first + own.count; ++r) {
@@ -188,7 +215,11 @@ template <int N>
           }
         }
       };
-      scan(static_cast<std::uint32_t>(a));  // the own leaf first: a tight radius before the descent
+      // The own leaf first, then the leaf where the previous query found its nearest point: a tight radius
+      // before the descent, which skips both.
+      scan(static_cast<std::uint32_t>(a));
+      const bool warm_start = warm != a && box_distance<N>(q, index.leaf_box(warm)) <= limit;
+      if (warm_start) scan(warm);
       int top = 0;
       std::int32_t node = 0;
       double bound = 0.0;
@@ -216,22 +247,10 @@ template <int N>
           }
           node = first;
         }
-        if (const std::uint32_t l = nodes[node].leaf; l != a) {
-          // The leaf's bounding box first: its squared distance (summed in any order) is at most any of its points'.
-          const double* box = index.leaf_box(l);
-          Vec4 sum = {};
-          for (int v = 0; v < kBox; v += kLanes) {
-            Vec4 lo, hi, qv;
-            std::memcpy(&lo, box + v, sizeof lo);
-            std::memcpy(&hi, box + kBox + v, sizeof hi);
-            std::memcpy(&qv, q + v, sizeof qv);
-            const Vec4 below = lo - qv, above = qv - hi;
-            Vec4 gap = below > above ? below : above;
-            gap = gap > Vec4{} ? gap : Vec4{};
-            sum = sum + gap * gap;
-          }
-          if ((sum[0] + sum[1]) + (sum[2] + sum[3]) <= limit) scan(l);
-        }
+        // A leaf's bounding box first: its squared distance (summed in any order) is at most any of its points'.
+        if (const std::uint32_t l = nodes[node].leaf; l != a && !(warm_start && l == warm) &&
+                                                      box_distance<N>(q, index.leaf_box(l)) <= limit)
+          scan(l);
         for (;;) {  // the deepest subtree left that may still hold a nearer point
           if (top == 0) goto done;
           const StackEntry<N>& e = stack[--top];
@@ -245,6 +264,7 @@ template <int N>
       }
     done:
       nearest[r - base] = best_row;
+      warm = leaf_of_row[best_row];
     }
   }
 }
