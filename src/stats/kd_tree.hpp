@@ -25,7 +25,8 @@ template <int N>
 using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointSetAdaptor<N>>,
                                                    PointSetAdaptor<N>, N, std::uint32_t>;
 
-// Leaf size 10 (nanoflann's default): small leaves suit the k = 2 queries that dominate here.
+// Leaf size 10 (nanoflann's default), for nanoflann's own searches (periodic neighbours, the RDF); the
+// Euclidean nearest-neighbour statistics build their tree with stats/nearest_other.hpp's kLeafSize.
 inline constexpr int kKdTreeLeafSize = 10;
 
 // Parameters of a tree that its constructor builds (nanoflann does unless told to skip it; a further

@@ -12,8 +12,10 @@
 #include "dfvn/core/dimension.hpp"
 #include "dfvn/core/parallel.hpp"
 #include "dfvn/core/quantile.hpp"
+#include "dfvn/core/simd.hpp"
 #include "dfvn/stats/distance_scale.hpp"
 #include "dfvn/stats/kd_tree.hpp"
+#include "dfvn/stats/nearest_other.hpp"
 #include "dfvn/stats/neighbour_loop.hpp"
 
 namespace dfvn {
@@ -31,21 +33,27 @@ std::string_view to_string(KnnBackend backend) { return backend == KnnBackend::n
 
 namespace {
 
+// nanoflann builds the tree; the queries are stats/nearest_other.hpp's, made a leaf at a time in the tree's
+// order and scattered back to the input's indices.
 template <int N>
 std::vector<double> nearest_neighbour_distances_nanoflann(const PointSet& points, int threads, const FractionProgress& progress) {
-  const LeafOrderedTree<N> ordered(points);
-  const PointSet& rows = ordered.sorted();
-  return neighbour_loop::for_every_point(ordered.original(), threads, progress, [&](std::size_t i) {
-    std::uint32_t index[2];
-    double dist2[2];
-    nanoflann::KNNResultSet<double, std::uint32_t> result(2);
-    result.init(index, dist2);
-    ordered.tree().findNeighbors(result, rows.point(i), nanoflann::SearchParams());
-    // The point itself is at distance 0, so one of the two results is the nearest other point (or a
-    // duplicate, also at 0); take whichever is not i.
-    const std::uint32_t other = index[0] == static_cast<std::uint32_t>(i) ? index[1] : index[0];
-    return distance_between(rows, i, other);
+  const PointSetAdaptor<N> adaptor{points};
+  const KdTree<N> tree(N, adaptor, kd_tree_params(nearest_other::kLeafSize));  // built by its constructor
+  const nearest_other::Index<N> index(points, tree);
+  const auto kernel = nearest_other::nearest_rows_kernel<N>(Simd::best);
+  std::vector<double> distances(points.size());
+  const std::uint32_t* original = index.original();
+  const auto& leaves = index.leaves();
+  // Chunks of leaves; progress counts leaves done over leaves.
+  neighbour_loop::for_every_chunk(leaves.size(), threads, progress, [&](std::size_t begin, std::size_t end) {
+    nearest_other::Scratch scratch = nearest_other::make_scratch(index);
+    const std::size_t first = leaves[begin].first, last = leaves[end - 1].first + leaves[end - 1].count;
+    std::vector<std::uint32_t> nearest(last - first);
+    kernel(index, begin, end, nearest.data(), scratch);
+    for (std::size_t r = first; r < last; ++r)
+      distances[original[r]] = distance_between(points, original[r], original[nearest[r - first]]);
   });
+  return distances;
 }
 
 }  // namespace

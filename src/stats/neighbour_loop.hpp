@@ -37,6 +37,25 @@ std::vector<double> for_every_point(const std::vector<std::uint32_t>& original, 
   return distances;
 }
 
+// chunk(begin, end) for consecutive ranges [0, count) of 64 items (rows, leaves) on a dynamic schedule, with progress as in
+// for_every_point. Each row belongs to one chunk, so the results do not depend on the thread count.
+template <typename Chunk>
+void for_every_chunk(std::size_t count, int threads, const FractionProgress& progress, Chunk chunk) {
+  constexpr std::int64_t kChunk = 64;
+  const auto chunks = (static_cast<std::int64_t>(count) + kChunk - 1) / kChunk;
+  std::atomic<std::uint64_t> items_done{0};
+#pragma omp parallel for schedule(dynamic, 1) num_threads(resolve_threads(threads))
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    const auto begin = static_cast<std::size_t>(c * kChunk);
+    const std::size_t end = std::min(count, begin + static_cast<std::size_t>(kChunk));
+    chunk(begin, end);
+    if (progress) {
+      const std::uint64_t done = items_done.fetch_add(end - begin, std::memory_order_relaxed) + (end - begin);
+      if (omp_get_thread_num() == 0) progress(std::min(1.0, static_cast<double>(done) / static_cast<double>(count)));
+    }
+  }
+}
+
 // Every pair once: distance(i, k) for i < k.
 template <typename Distance>
 std::vector<double> brute_force(std::size_t count, Distance distance) {

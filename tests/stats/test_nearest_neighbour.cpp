@@ -2,8 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <string>
+
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/core/simd.hpp"
 #include "dfvn/sampling/jitter.hpp"
+#include "dfvn/sampling/lattice.hpp"
 #include "dfvn/sampling/poisson_disk.hpp"
+#include "dfvn/stats/nearest_other.hpp"
 
 namespace dfvn {
 namespace {
@@ -51,6 +58,66 @@ TEST(NearestNeighbour, IndependentOfThreads) {
   const PointSet p = uniform_random_points(6, 20000, Box{0.0, 1.0}, 8, 2);
   EXPECT_EQ(nearest_neighbour_distances(p, KnnBackend::nanoflann, 1), nearest_neighbour_distances(p, KnnBackend::nanoflann, 2));
   EXPECT_EQ(nearest_neighbour_distances(p, KnnBackend::flann, 1), nearest_neighbour_distances(p, KnnBackend::flann, 2));
+}
+
+
+// The nanoflann backend's search (stats/nearest_other.hpp) against brute force, to the last bit, on sets
+// made to tie and to collapse the tree: a lattice with exact ties in every direction, the same lattice
+// with a jitter below its spacing, one point repeated, two and three points, and clusters 1e-9 wide.
+TEST(NearestNeighbour, SearchEqualsBruteForceOnTiesAndDegenerateSets) {
+  const auto check = [](const PointSet& p, const std::string& what) {
+    const auto brute = nearest_neighbour_distances_brute_force(p);
+    for (int threads : {1, 2}) {
+      const auto nano = nearest_neighbour_distances(p, KnnBackend::nanoflann, threads);
+      ASSERT_EQ(nano.size(), brute.size()) << what;
+      for (std::size_t i = 0; i < brute.size(); ++i) ASSERT_EQ(nano[i], brute[i]) << what << " point " << i;
+    }
+  };
+  for (int dimension : {2, 3, 5, 7}) {
+    const int side = dimension == 7 ? 4 : dimension == 5 ? 6 : dimension == 3 ? 14 : 40;
+    const LatticeSpec l{dimension, side, Protocol::unit};
+    PointSet lattice{dimension, Coordinates(l.point_count() * static_cast<std::size_t>(dimension), 0.0), Box{0.0, 1.0}};
+    for (std::uint64_t i = 0; i < l.point_count(); ++i) l.point(i, lattice.coordinates.data() + static_cast<std::size_t>(dimension) * i);
+    check(lattice, std::to_string(dimension) + "D lattice");
+    PointSet jittered = lattice;
+    const PointSet noise = uniform_random_points(dimension, l.point_count(), Box{0.0, 1.0}, 7, 1);
+    for (std::size_t k = 0; k < jittered.coordinates.size(); ++k)
+      jittered.coordinates[k] = std::clamp(jittered.coordinates[k] + 0.3 / static_cast<double>(side) * (noise.coordinates[k] - 0.5), 0.0, 1.0);
+    check(jittered, std::to_string(dimension) + "D jittered lattice");
+    PointSet same{dimension, {}, Box{0.0, 1.0}};
+    for (int k = 0; k < 100; ++k) same.coordinates.insert(same.coordinates.end(), lattice.point(3), lattice.point(3) + dimension);
+    check(same, std::to_string(dimension) + "D repeated point");
+    check(PointSet{dimension, Coordinates(lattice.point(0), lattice.point(2)), Box{0.0, 1.0}}, std::to_string(dimension) + "D two points");
+    check(PointSet{dimension, Coordinates(lattice.point(5), lattice.point(8)), Box{0.0, 1.0}}, std::to_string(dimension) + "D three points");
+    PointSet clusters = uniform_random_points(dimension, 2000, Box{0.0, 1.0}, 11, 1);
+    for (std::size_t k = 0; k < clusters.coordinates.size(); ++k)
+      clusters.coordinates[k] = static_cast<double>((k / static_cast<std::size_t>(dimension)) % 4) * 0.25 + 1e-9 * clusters.coordinates[k];
+    check(clusters, std::to_string(dimension) + "D clusters");
+  }
+}
+
+// Both builds of the search (x86-64 baseline and AVX2) find rows at the same distances, bit for bit.
+TEST(NearestNeighbour, SearchBuildsAgree) {
+  if (!cpu_has_avx2()) GTEST_SKIP() << "this CPU runs only the baseline build";
+  for (int dimension = 2; dimension <= 8; ++dimension) {
+    const PointSet p = uniform_random_points(dimension, 20000, Box{0.0, 1.0}, 40 + dimension, 1);
+    dispatch_dimension(dimension, [&]<int N>() {
+      const PointSetAdaptor<N> adaptor{p};
+      const KdTree<N> tree(N, adaptor, kd_tree_params(nearest_other::kLeafSize));
+      const nearest_other::Index<N> index(p, tree);
+      std::vector<std::uint32_t> best(p.size()), baseline(p.size());
+      auto scratch = nearest_other::make_scratch(index);
+      nearest_other::nearest_rows_kernel<N>(Simd::best)(index, 0, index.leaves().size(), best.data(), scratch);
+      nearest_other::nearest_rows_kernel<N>(Simd::baseline)(index, 0, index.leaves().size(), baseline.data(), scratch);
+      EXPECT_NE(nearest_other::nearest_rows_kernel<N>(Simd::best), nearest_other::nearest_rows_kernel<N>(Simd::baseline));
+      for (std::size_t r = 0; r < p.size(); ++r) {
+        ASSERT_NE(best[r], r);
+        const std::uint32_t* original = index.original();
+        ASSERT_EQ(distance_between(p, original[r], original[best[r]]), distance_between(p, original[r], original[baseline[r]]))
+            << N << "D row " << r;
+      }
+    });
+  }
 }
 
 }  // namespace
