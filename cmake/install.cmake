@@ -60,6 +60,7 @@ set(DFVN_PUBLIC_HEADERS
     noise/noise_domain.hpp
     noise/noise_functions.hpp
     noise/simplex_noise.hpp
+    noise/simplex_separate.hpp
     noise/turning_bands.hpp
     quadrature/genz.hpp
     sampling/curl_noise_jitter.hpp

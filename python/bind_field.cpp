@@ -98,7 +98,7 @@ void bind_field(py::module_& module) {
 
 points: (n, N) array, N = 2..8 (converted to float64 C order if it is not already).
 seed: the field's noise realization. frequency: cycles per unit length (one cycle = 2 pi / k_eff
-of the basis), in [2^-50, 2^50]. noise: 'turning-bands', 'simplex' or 'quintic-gradient'.
+of the basis), in [2^-50, 2^50]. noise: 'turning-bands', 'simplex', 'quintic-gradient' or 'simplex-separate'.
 phase (default 0.0): the noise's phase alpha in radians, any finite real (rotating gradients, as
 `dfvn-sample field --phase`): period 2 pi, alpha + pi flips every f_i, 0 is the field without a phase.
 domain: 'free' (R^N), 'torus' (the basis's periodic form: period 1 along every axis, at about

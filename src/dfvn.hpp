@@ -41,6 +41,7 @@
 #include "dfvn/noise/noise_domain.hpp"
 #include "dfvn/noise/noise_functions.hpp"
 #include "dfvn/noise/simplex_noise.hpp"
+#include "dfvn/noise/simplex_separate.hpp"
 #include "dfvn/noise/turning_bands.hpp"
 
 #include "dfvn/quadrature/genz.hpp"
