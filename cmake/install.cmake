@@ -45,6 +45,7 @@ set(DFVN_PUBLIC_HEADERS
     field/constraint.hpp
     field/cross_product.hpp
     field/dfvn_field.hpp
+    field/obstacles.hpp
     field/diagnose.hpp
     field/evaluate_points.hpp
     integrate/trace.hpp

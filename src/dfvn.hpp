@@ -23,6 +23,7 @@
 #include "dfvn/field/constraint.hpp"
 #include "dfvn/field/cross_product.hpp"
 #include "dfvn/field/dfvn_field.hpp"
+#include "dfvn/field/obstacles.hpp"
 #include "dfvn/field/diagnose.hpp"
 #include "dfvn/field/evaluate_points.hpp"
 
