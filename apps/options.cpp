@@ -131,8 +131,8 @@ CLI::Option* add_field_kind_option(CLI::App& cmd, std::string& field, const std:
                         "Divergence-free field: dfvn (c = cross(grad f_1..f_{N-1}), Eq. 8, any N) or curl (Bridson et\n"
                         "al. 2007's curl noise, 2D and 3D: c = (d psi/dy, -d psi/dx), in 3D c = curl (psi_1, psi_2, psi_3)\n"
                         "of three independent functions of --noise; the same RMS |c| = 1 and --frequency). Curl noise has\n"
-                        "no reprojection (its streamlines are not intersections of iso-surfaces) and no boundary\n"
-                        "treatment here; in 2D it equals the dfvn field. " + consequences)
+                        "no reprojection (its streamlines are not intersections of iso-surfaces); its boundaries are\n"
+                        "Bridson's (field --domain cube or ball --bound ramp); in 2D it equals the dfvn field. " + consequences)
       ->capture_default_str()
       ->check(CLI::IsMember({"dfvn", "curl"}));
 }
