@@ -56,7 +56,7 @@ struct FieldOptions {
   // Spherical obstacles inside the cube or the ball (field/obstacles.hpp), each with the transition width
   // above as its ramp's width: f_1 times ramp(d / w) for DFVN (any N) and 2D curl noise, Bridson's psi_c
   // for 3D curl noise. Checked against the dimension and the domain by DfvnField<N>.
-  std::vector<Obstacle> obstacles;
+  std::vector<Obstacle> obstacles = {};
 
   // throws std::invalid_argument unless the frequency is finite and positive, the phase finite, the
   // constraint's transition width is in (0, 1/4], a periodic field has a periodic basis and no constraint,
