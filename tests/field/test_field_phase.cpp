@@ -58,7 +58,9 @@ TYPED_TEST(FieldPhaseTest, VelocityHasPeriodTwoPi) {
       moved = std::max(moved, (va - f0.velocity(x)).cwiseAbs().maxCoeff());
     }
     EXPECT_LE(worst, 1e-11) << to_string(basis);
-    EXPECT_GT(moved, 1e-2) << to_string(basis);
+    // simplex-separate is exactly still on most points from 7D on (data/simplex_collapse.md): 200 points
+    // need not see it move.
+    if (basis != NoiseBasis::simplex_separate || N <= 6) EXPECT_GT(moved, 1e-2) << to_string(basis);
   }
 }
 
