@@ -34,6 +34,7 @@ struct FieldCommand : Subcommand {
   std::string bound = "eq13";
   double boundary_width = 0.1;
   CLI::Option* bound_options[2] = {};  // --bound, --boundary-width: only with a bounded domain
+  std::vector<std::string> obstacles;
   std::string input;
   std::string output = "-";
   bool diagnose = false;
@@ -58,7 +59,7 @@ struct FieldCommand : Subcommand {
         ->check(kNoiseFrequency);
     add_noise_option(*cmd, noise);
     add_field_kind_option(*cmd, field_kind,
-                          "With curl: --domain free or torus;\nthe columns f1..f{N-1} are then psi_1..psi_{N-1}");
+                          "With curl: --domain free or torus, or cube or ball\nwith --bound ramp; the columns f1..f{N-1} are then psi_1..psi_{N-1}");
     add_phase_option(*cmd, phase);
     transform.add_to(*cmd);
     cmd->add_option("--domain", domain,
@@ -75,6 +76,13 @@ struct FieldCommand : Subcommand {
                     "With --domain cube or ball: the bound's transition width in length units, in (0, 1/4]")
         ->capture_default_str()
         ->check(CLI::Range(std::nextafter(0.0, 1.0), 0.25));
+    cmd->add_option("--obstacle", obstacles,
+                    "With --domain cube or ball: a spherical obstacle sphere:CX,CY[,CZ...],R (N centre coordinates\n"
+                    "and a radius; repeatable; default none) that the field flows around: f_1 times Bridson's\n"
+                    "ramp(d / w) (w = --boundary-width, d the distance to the sphere) for dfvn and 2D curl noise,\n"
+                    "Bridson's psi_c = alpha psi + (1 - alpha) n (n . psi) for 3D curl noise. Each obstacle with its\n"
+                    "zone must lie inside the domain clear of the wall's zone and of the other obstacles' zones")
+        ->take_all();
     CLI::Option* input_option =
         cmd->add_option("--input", input, "Point file to read, CSV or whitespace-separated (default: standard input)")
             ->check(CLI::ExistingFile);
@@ -113,14 +121,25 @@ struct FieldCommand : Subcommand {
       o.constraint = domain == "cube" ? dfvn::FieldConstraint::inside_cube : dfvn::FieldConstraint::inside_ball;
       o.transition_width = boundary_width;
       o.bound = dfvn::parse_bound(bound);
+      for (const std::string& spec : obstacles) o.obstacles.push_back(dfvn::parse_obstacle(spec));
     }
     return o;
   }
 
   void run() {
     dfvn::check_outputs({{"--output", output}});
-    if (field_kind == "curl" && (domain == "cube" || domain == "ball"))
-      fail("--field curl has no boundary treatment (Bridson's boundaries are not implemented): --domain free or torus");
+    if (field_kind == "curl" && (domain == "cube" || domain == "ball") && bound != "ramp")
+      fail("--field curl's boundary is Bridson's (the ramped stream function in 2D, psi_c in 3D): --domain " + domain +
+           " needs --bound ramp");
+    if (!obstacles.empty() && domain != "cube" && domain != "ball")
+      fail("--obstacle lies inside a domain: it needs --domain cube or ball, not " + domain);
+    for (const std::string& spec : obstacles) {
+      try {
+        (void)dfvn::parse_obstacle(spec);
+      } catch (const std::invalid_argument& e) {
+        fail(std::string("--obstacle: ") + e.what());
+      }
+    }
     if (field_kind == "curl" && dimension > 3)
       fail(fmt::format("--field curl is Bridson's curl noise in 2D and 3D; --dim {} needs --field dfvn", dimension));
     if (diagnose && (domain == "cube" || domain == "ball"))

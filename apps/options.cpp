@@ -117,10 +117,13 @@ CLI::Option* add_dimension_option(CLI::App& cmd, int& dimension, const std::stri
 void add_noise_option(CLI::App& cmd, std::string& noise) {
   cmd.add_option("--noise", noise,
                  "Noise basis of the N-1 functions: turning-bands (healthy in every dimension), simplex (the\n"
-                 "paper's construction; its field is nearly still in most of space from 4D on) or quintic-gradient\n"
-                 "(Perlin-style lattice gradient noise, the noise of the paper's image-warping shader)")
+                 "paper's construction, all functions in one shared traversal: in 3D optimised bitangent noise; its\n"
+                 "field is nearly still in most of space from 4D on), quintic-gradient (Perlin-style lattice\n"
+                 "gradient noise, the noise of the paper's image-warping shader) or simplex-separate (the same\n"
+                 "simplex noise, one traversal per function at an offset point: in 3D bitangent noise's reference\n"
+                 "form)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"simplex", "turning-bands", "quintic-gradient"}));
+      ->check(CLI::IsMember({"simplex", "turning-bands", "quintic-gradient", "simplex-separate"}));
 }
 
 CLI::Option* add_field_kind_option(CLI::App& cmd, std::string& field, const std::string& consequences) {
@@ -128,8 +131,8 @@ CLI::Option* add_field_kind_option(CLI::App& cmd, std::string& field, const std:
                         "Divergence-free field: dfvn (c = cross(grad f_1..f_{N-1}), Eq. 8, any N) or curl (Bridson et\n"
                         "al. 2007's curl noise, 2D and 3D: c = (d psi/dy, -d psi/dx), in 3D c = curl (psi_1, psi_2, psi_3)\n"
                         "of three independent functions of --noise; the same RMS |c| = 1 and --frequency). Curl noise has\n"
-                        "no reprojection (its streamlines are not intersections of iso-surfaces) and no boundary\n"
-                        "treatment here; in 2D it equals the dfvn field. " + consequences)
+                        "no reprojection (its streamlines are not intersections of iso-surfaces); its boundaries are\n"
+                        "Bridson's (field --domain cube or ball --bound ramp); in 2D it equals the dfvn field. " + consequences)
       ->capture_default_str()
       ->check(CLI::IsMember({"dfvn", "curl"}));
 }

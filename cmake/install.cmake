@@ -46,6 +46,7 @@ set(DFVN_PUBLIC_HEADERS
     field/constraint.hpp
     field/cross_product.hpp
     field/dfvn_field.hpp
+    field/obstacles.hpp
     field/diagnose.hpp
     field/evaluate_points.hpp
     field/field_transform.hpp
@@ -63,6 +64,7 @@ set(DFVN_PUBLIC_HEADERS
     noise/noise_functions.hpp
     noise/noise_transforms.hpp
     noise/simplex_noise.hpp
+    noise/simplex_separate.hpp
     noise/turning_bands.hpp
     quadrature/genz.hpp
     sampling/curl_noise_jitter.hpp

@@ -21,14 +21,12 @@ namespace {
 // the bound and its width only for a bounded one.
 FieldOptions field_options(double frequency, const std::string& noise, double phase, const std::string& domain,
                            const std::optional<std::string>& bound, const std::optional<double>& boundary_width,
-                           const std::string& field, const NoiseTransform& transform = {}) {
+                           const std::string& field, const std::vector<std::string>& obstacles,
+                           const NoiseTransform& transform = {}) {
   FieldOptions o{parse_noise_basis(noise), frequency};
   o.phase = phase;
   o.transform = transform;
   o.kind = parse_field_kind(field);
-  if (o.kind == FieldKind::curl && domain != "free" && domain != "torus")
-    throw py::value_error("field 'curl' has no boundary treatment (Bridson's boundaries are not implemented): "
-                          "domain 'free' or 'torus'");
   const bool bounded = domain == "cube" || domain == "ball";
   if (!bounded && domain != "free" && domain != "torus")
     throw py::value_error("unknown domain '" + domain + "' (allowed: free, torus, cube, ball)");
@@ -39,6 +37,9 @@ FieldOptions field_options(double frequency, const std::string& noise, double ph
     o.constraint = domain == "cube" ? FieldConstraint::inside_cube : FieldConstraint::inside_ball;
     o.bound = parse_bound(bound.value_or("eq13"));
     o.transition_width = boundary_width.value_or(0.1);
+    for (const std::string& spec : obstacles) o.obstacles.push_back(parse_obstacle(spec));
+  } else if (!obstacles.empty()) {
+    throw py::value_error("obstacles lie inside a domain: they need domain 'cube' or 'ball', not '" + domain + "'");
   }
   return o;
 }
@@ -74,14 +75,15 @@ NoiseTransform noise_transform(const py::object& stretch, const std::optional<do
 
 py::tuple field(const PointArray& points, std::uint64_t seed, double frequency, const std::string& noise, double phase,
                 const std::string& domain, const std::optional<std::string>& bound,
-                const std::optional<double>& boundary_width, const std::string& field_kind, int threads,
+                const std::optional<double>& boundary_width, const std::string& field_kind,
+                const std::vector<std::string>& obstacles, int threads,
                 const py::object& stretch, const std::optional<double>& time, const std::optional<std::string>& lift,
                 double lift_ramp) {
   const PointRows in = point_rows(points, kMinDimension, kMaxDimension);
   FieldQuery query;
   query.dimension = in.dimension;
   query.seed = seed;
-  query.field = field_options(frequency, noise, phase, domain, bound, boundary_width, field_kind,
+  query.field = field_options(frequency, noise, phase, domain, bound, boundary_width, field_kind, obstacles,
                               noise_transform(stretch, time, lift, lift_ramp));
   query.threads = threads;
   py::array_t<double> velocity = new_array(in.rows, in.dimension);
@@ -99,14 +101,14 @@ py::array_t<double> trace(const PointArray& points, double time, std::uint64_t s
                           const std::string& noise, double phase, const std::string& integrator,
                           const std::optional<std::string>& reprojection, int steps, const std::string& domain,
                           const std::optional<std::string>& bound, const std::optional<double>& boundary_width,
-                          const std::string& field_kind, int threads, const py::object& stretch,
-                          const std::optional<double>& noise_time, const std::optional<std::string>& lift,
-                          double lift_ramp) {
+                          const std::string& field_kind, const std::vector<std::string>& obstacles, int threads,
+                          const py::object& stretch, const std::optional<double>& noise_time,
+                          const std::optional<std::string>& lift, double lift_ramp) {
   const PointRows in = point_rows(points, kMinDimension, kMaxDimension);
   TracePointsQuery query;
   query.dimension = in.dimension;
   query.seed = seed;
-  query.field = field_options(frequency, noise, phase, domain, bound, boundary_width, field_kind,
+  query.field = field_options(frequency, noise, phase, domain, bound, boundary_width, field_kind, obstacles,
                               noise_transform(stretch, noise_time, lift, lift_ramp));
   query.trace.integrator = parse_integrator(integrator);
   // Not given: gauss-newton, or none for curl noise, which has no reprojection (the tracer refuses one).
@@ -131,13 +133,13 @@ void bind_field(py::module_& module) {
   module.def("field", &field, "points"_a, py::kw_only(), "seed"_a = 1, "frequency"_a = 1.0,
              "noise"_a = std::string(to_string(kDefaultNoiseBasis)), "phase"_a = 0.0, "domain"_a = "free",
              "bound"_a = py::none(), "boundary_width"_a = py::none(),
-             "field"_a = std::string(to_string(kDefaultFieldKind)), "threads"_a = 0, "stretch"_a = py::none(),
-             "time"_a = py::none(), "lift"_a = py::none(), "lift_ramp"_a = 0.0,
+             "field"_a = std::string(to_string(kDefaultFieldKind)), "obstacles"_a = std::vector<std::string>{}, "threads"_a = 0,
+             "stretch"_a = py::none(), "time"_a = py::none(), "lift"_a = py::none(), "lift_ramp"_a = 0.0,
              R"(The divergence-free field c(x) = cross(grad f_1, ..., grad f_{N-1}) (Eq. 8) at each point.
 
 points: (n, N) array, N = 2..8 (converted to float64 C order if it is not already).
 seed: the field's noise realization. frequency: cycles per unit length (one cycle = 2 pi / k_eff
-of the basis), in [2^-50, 2^50]. noise: 'turning-bands', 'simplex' or 'quintic-gradient'.
+of the basis), in [2^-50, 2^50]. noise: 'turning-bands', 'simplex', 'quintic-gradient' or 'simplex-separate'.
 phase (default 0.0): the noise's phase alpha in radians, any finite real (rotating gradients, as
 `dfvn-sample field --phase`): period 2 pi, alpha + pi flips every f_i, 0 is the field without a phase.
 domain: 'free' (R^N), 'torus' (the basis's periodic form: period 1 along every axis, at about
@@ -146,8 +148,10 @@ ball): f_1 turned into the boundary function so that c is tangent to the boundar
 (the paper's Eq. 13, the default) or 'ramp' (Bridson et al. 2007) over boundary_width (length units,
 (0, 1/4], default 0.1). field: 'dfvn' (Eq. 8, the default) or 'curl' (Bridson et al. 2007's curl
 noise, N = 2 and 3 only: c = (d psi/dy, -d psi/dx), in 3D c = curl (psi_1, psi_2, psi_3) of three
-independent functions of the basis; the same RMS |c| = 1 and frequency; domain 'free' or 'torus'; f
-then holds psi_1..psi_{N-1}). threads: 0 = all cores (the result never depends on it).
+independent functions of the basis; the same RMS |c| = 1 and frequency; domain 'free', 'torus', or
+'cube' or 'ball' with bound 'ramp' (Bridson's boundaries); f then holds psi_1..psi_{N-1}). obstacles
+(default none): with domain 'cube' or 'ball', spheres 'sphere:CX,CY[,CZ...],R' the field flows around,
+as `dfvn-sample field --obstacle`. threads: 0 = all cores (the result never depends on it).
 stretch (default None): 'U:S' or (U, S), f_i(A x) with A = I + (S - 1) u u^T, u = U / |U| (as
 `dfvn-sample field --stretch`); time (default None): the (N+1)D basis at (x, time), N <= 7 (`--time`);
 lift (default None, 2D only): 'plane:SX,SY' or 'bump:H,R[,CX,CY]', f(x) = F(x, h(x)) (`--lift`), with
@@ -158,7 +162,8 @@ the same numbers as `dfvn-sample field` writes.)");
   module.def("trace", &trace, "points"_a, "t"_a, py::kw_only(), "seed"_a = 1, "frequency"_a = 1.0,
              "noise"_a = std::string(to_string(kDefaultNoiseBasis)), "phase"_a = 0.0, "integrator"_a = "rk4",
              "reprojection"_a = py::none(), "steps"_a = 1, "domain"_a = "free", "bound"_a = py::none(),
-             "boundary_width"_a = py::none(), "field"_a = std::string(to_string(kDefaultFieldKind)), "threads"_a = 0,
+             "boundary_width"_a = py::none(), "field"_a = std::string(to_string(kDefaultFieldKind)),
+             "obstacles"_a = std::vector<std::string>{}, "threads"_a = 0,
              "stretch"_a = py::none(), "time"_a = py::none(), "lift"_a = py::none(), "lift_ramp"_a = 0.0,
              R"(Trace each point along the field for time t (Algorithm 1); returns where they end, (n, N).
 

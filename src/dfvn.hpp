@@ -25,6 +25,7 @@
 #include "dfvn/field/constraint.hpp"
 #include "dfvn/field/cross_product.hpp"
 #include "dfvn/field/dfvn_field.hpp"
+#include "dfvn/field/obstacles.hpp"
 #include "dfvn/field/diagnose.hpp"
 #include "dfvn/field/evaluate_points.hpp"
 #include "dfvn/field/field_transform.hpp"
@@ -45,6 +46,7 @@
 #include "dfvn/noise/noise_functions.hpp"
 #include "dfvn/noise/noise_transforms.hpp"
 #include "dfvn/noise/simplex_noise.hpp"
+#include "dfvn/noise/simplex_separate.hpp"
 #include "dfvn/noise/turning_bands.hpp"
 
 #include "dfvn/quadrature/genz.hpp"

@@ -26,8 +26,9 @@ struct BasisDim {
 #define DFVN_BASIS_DIMENSIONS(B) \
   BasisDim<B, 2>, BasisDim<B, 3>, BasisDim<B, 4>, BasisDim<B, 5>, BasisDim<B, 6>, BasisDim<B, 7>, BasisDim<B, 8>
 using AllBasesAndDimensions =
-    ::testing::Types<DFVN_BASIS_DIMENSIONS(NoiseBasis::simplex), DFVN_BASIS_DIMENSIONS(NoiseBasis::turning_bands)>;
-// The bases meant to be healthy in every dimension (all but the paper's simplex construction).
+    ::testing::Types<DFVN_BASIS_DIMENSIONS(NoiseBasis::simplex), DFVN_BASIS_DIMENSIONS(NoiseBasis::turning_bands),
+                     DFVN_BASIS_DIMENSIONS(NoiseBasis::simplex_separate)>;
+// The bases meant to be healthy in every dimension (not the paper's simplex construction, fused or separate).
 using HealthyBasesAndDimensions = ::testing::Types<DFVN_BASIS_DIMENSIONS(NoiseBasis::turning_bands)>;
 
 // Names the typed tests "turning-bands_7D" rather than by an index.

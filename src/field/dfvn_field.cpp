@@ -31,10 +31,14 @@ std::string_view to_string(FieldKind kind) {
 void FieldOptions::validate() const {
   check_noise_frequency(frequency);
   parse_field_kind(to_string(kind));  // an unknown enum value throws
-  if (kind == FieldKind::curl && constraint != FieldConstraint::none)
-    throw std::invalid_argument(fmt::format(
-        "curl noise has no boundary treatment here: --field curl takes no {} constraint (use the free field or the torus)",
-        to_string(constraint)));
+  if (kind == FieldKind::curl && constraint == FieldConstraint::on_sphere)
+    throw std::invalid_argument("curl noise has no field on the sphere: --field curl takes the free field, the torus, the cube or the ball");
+  if (kind == FieldKind::curl && constraint != FieldConstraint::none && bound != Bound::ramp)
+    throw std::invalid_argument(
+        "curl noise's boundary is Bridson's (the ramped stream function in 2D, psi_c = alpha psi + (1 - alpha) n (n . psi) in "
+        "3D): --field curl in the cube or the ball needs --bound ramp");
+  if (!obstacles.empty() && constraint != FieldConstraint::inside_cube && constraint != FieldConstraint::inside_ball)
+    throw std::invalid_argument("obstacles lie inside a domain: --obstacle needs --domain cube or ball");
   check_noise_phase(phase);
   transform.validate();
   if (transform.time) check_noise_argument(*transform.time, frequency, "--time");
@@ -137,7 +141,8 @@ DfvnField<N>::DfvnField(std::uint64_t seed, const FieldOptions& options)
       scale_(options.periodic ? 1.0 : 2.0 * std::numbers::pi * options.frequency / noise_->wavenumber()),
       amplitude_(options.periodic ? torus_amplitude<N>(*noise_) : noise_->amplitude()),
       frequency_(options.periodic ? noise_->wavenumber() / (2.0 * std::numbers::pi) : options.frequency) {
-  if (options.constraint != FieldConstraint::none)
+  check_obstacles(N, options.constraint, options.obstacles, options.transition_width);
+  if (options.constraint != FieldConstraint::none && !(options.kind == FieldKind::curl && N == 3))
     constraint_ =
         std::make_shared<const ConstraintFunction<N>>(options.constraint, options.transition_width, options.bound);
   if (options.kind == FieldKind::curl) {
@@ -146,10 +151,12 @@ DfvnField<N>::DfvnField(std::uint64_t seed, const FieldOptions& options)
           fmt::format("--field curl is Bridson's curl noise in 2D and 3D; dimension {} needs --field dfvn", N));
     } else if constexpr (N == 3) {
       // 64 cycles per side of the measuring box (one cycle = 2 pi / k_eff in the basis's units).
-      curl_noise_ = options.periodic ? make_periodic_noise_functions<N>(options.noise, curl_third_seed(seed), options.frequency)
-                                     : make_noise_functions<N>(options.noise, curl_third_seed(seed));
-      amplitude_ = curl_amplitude<N>(*noise_, *curl_noise_,
-                                     options.periodic ? 1.0 : 64.0 * 2.0 * std::numbers::pi / noise_->wavenumber());
+      // psi_3 turns with the phase as psi_1 and psi_2 do (field_noise passes options.phase; it did not before).
+      curl_noise_ = field_noise<N>(options, curl_third_seed(seed), options.transform.time.value_or(0.0));
+      // With a transform the amplitude is measured below, at time 0 on the flat surface.
+      if (!options.transform.active())
+        amplitude_ = curl_amplitude<N>(*noise_, *curl_noise_,
+                                       options.periodic ? 1.0 : 64.0 * 2.0 * std::numbers::pi / noise_->wavenumber());
     }
     // N == 2: c = (d psi/dy, -d psi/dx) is cross<2>(grad psi), the 2D DFVN field, so the amplitude is
     // the basis's (or on the torus the measured one) as for --field dfvn.
@@ -166,7 +173,6 @@ DfvnField<N>::DfvnField(std::uint64_t seed, const FieldOptions& options)
     if (options.kind == FieldKind::curl && N == 3) {
       if constexpr (N == 3) {
         const auto at0 = same ? noise_ : field_noise<N>(flat, seed, 0.0);
-        curl_noise_ = field_noise<N>(options, curl_third_seed(seed), t.time.value_or(0.0));
         const auto third0 = same ? curl_noise_ : field_noise<N>(flat, curl_third_seed(seed), 0.0);
         amplitude_ = curl_amplitude<N>(*at0, *third0,
                                        options.periodic ? 1.0 : 64.0 * 2.0 * std::numbers::pi / at0->wavenumber());
@@ -229,6 +235,8 @@ FieldSample<N> DfvnField<N>::evaluate_functions(const Vec<N>& x) const {
     out.gradient[i] = amplitude_ * noise.gradient[i];
   }
   if (constraint_) constraint_->replace(x, out.value[0], out.gradient[0]);
+  if (constraint_ && !options_.obstacles.empty())
+    ramp_obstacles<N>(options_.obstacles, options_.transition_width, x, out.value[0], out.gradient[0]);
   out.velocity.setConstant(std::numeric_limits<double>::quiet_NaN());
   return out;
 }
@@ -238,6 +246,15 @@ FieldSample<N> DfvnField<N>::evaluate(const Vec<N>& x) const {
   FieldSample<N> out = evaluate_functions(x);
   if constexpr (N == 3) {
     if (curl_noise_) {
+      if (options_.constraint != FieldConstraint::none) {  // Bridson's boundaries: curl of psi_c
+        std::array<double, 3> psi;
+        std::array<Vec<N>, 3> jacobian;
+        curl_potential_3d(x, psi, jacobian);
+        out.value = {psi[0], psi[1]};
+        out.gradient = {jacobian[0], jacobian[1]};
+        out.velocity = curl_of<N>(out.gradient, jacobian[2]);
+        return out;
+      }
       const Vec<N> g3 = amplitude_ * curl_noise_->evaluate(scale_ * x).gradient[0];
       out.velocity = curl_of<N>(out.gradient, g3);  // Bridson et al. 2007, curl psi
       return out;
@@ -251,13 +268,34 @@ FieldSample<N> DfvnField<N>::evaluate(const Vec<N>& x) const {
 template <int N>
 std::array<double, 3> DfvnField<N>::curl_potential(const Vec<N>& x) const {
   if (options_.kind != FieldKind::curl || N > 3) throw std::logic_error("curl_potential of a field that is no curl noise");
-  const FieldSample<N> functions = evaluate_functions(x);
-  std::array<double, 3> psi{functions.value[0], 0.0, 0.0};
+  std::array<double, 3> psi{0.0, 0.0, 0.0};
   if constexpr (N == 3) {
-    psi[1] = functions.value[1];
-    psi[2] = amplitude_ / scale_ * curl_noise_->evaluate(scale_ * x).value[0];
+    std::array<Vec<N>, 3> jacobian;
+    curl_potential_3d(x, psi, jacobian);
+  } else {
+    psi[0] = evaluate_functions(x).value[0];
   }
   return psi;
+}
+
+template <int N>
+void DfvnField<N>::curl_potential_3d(const Vec<N>& x, std::array<double, 3>& psi, std::array<Vec<N>, 3>& jacobian) const {
+  if constexpr (N == 3) {
+    const FieldSample<N> functions = evaluate_functions(x);  // no constraint_ for 3D curl noise
+    const NoiseSample<N, N - 1> third = curl_noise_->evaluate(scale_ * x);
+    psi = {functions.value[0], functions.value[1], amplitude_ / scale_ * third.value[0]};
+    jacobian = {functions.gradient[0], functions.gradient[1], Vec<N>(amplitude_ * third.gradient[0])};
+    if (options_.constraint != FieldConstraint::none)
+      bridson_boundary_3d(options_.constraint, options_.obstacles, options_.transition_width, x, psi, jacobian);
+  } else {
+    (void)x, (void)psi, (void)jacobian;
+    throw std::logic_error("3D curl potential of a field that is not 3D");
+  }
+}
+
+template <int N>
+bool DfvnField<N>::contains(const Vec<N>& x) const {
+  return satisfies_constraint<N>(options_.constraint, x) && outside_obstacles<N>(options_.obstacles, x);
 }
 
 template class DfvnField<2>;

@@ -5,10 +5,12 @@
 #include <cstdint>
 #include <memory>
 #include <string_view>
+#include <vector>
 
 #include "dfvn/core/dimension.hpp"
 #include "dfvn/field/constraint.hpp"
 #include "dfvn/field/field_transform.hpp"
+#include "dfvn/field/obstacles.hpp"
 #include "dfvn/noise/noise_functions.hpp"
 
 namespace dfvn {
@@ -24,8 +26,8 @@ struct FieldSample {
 // curl: Bridson, Hourihan and Nordenstam's curl noise (2007), 2D and 3D only: c = (d psi/dy, -d psi/dx)
 // of one function of the basis in 2D, c = curl (psi_1, psi_2, psi_3) of three independent functions in
 // 3D, from the basis's analytic gradients. Its streamlines are not intersections of iso-surfaces, so no
-// reprojection exists for it (the tracer refuses one), and it has no boundary treatment here (no
-// constraint); the torus takes the basis's periodic form.
+// reprojection exists for it (the tracer refuses one); in the cube and the ball (with obstacles) it takes
+// Bridson's boundaries (field/obstacles.hpp), and the torus takes the basis's periodic form.
 enum class FieldKind { dfvn, curl };
 inline constexpr FieldKind kDefaultFieldKind = FieldKind::dfvn;
 FieldKind parse_field_kind(std::string_view name);  // "dfvn" | "curl"; throws std::invalid_argument
@@ -45,7 +47,8 @@ struct FieldOptions {
   // The torus [0,1)^N: the basis's periodic form (period 1 along every axis, at about `frequency` cycles
   // per unit length; noise/noise_functions.hpp), with no constraint.
   bool periodic = false;
-  // Which field the functions make (FieldKind above); curl needs N <= 3 and no constraint.
+  // Which field the functions make (FieldKind above); curl needs N <= 3, and with the cube or the ball
+  // Bound::ramp (Bridson's boundaries: the ramped stream function in 2D, psi_c in 3D).
   FieldKind kind = kDefaultFieldKind;
   // The phase alpha in radians (rotating gradients, noise/noise_functions.hpp): every gradient of the basis
   // turns in its own seeded plane, so the field has period 2 pi in alpha, and for every fixed alpha its
@@ -54,10 +57,15 @@ struct FieldOptions {
   // Where the noise is read (field/field_transform.hpp): --stretch (f_i(A x)), --time (the (N+1)D basis
   // at (x, t)), --lift (2D: F(x, h(x))). None of them: the field before they existed, bit for bit.
   NoiseTransform transform{};
+  // Spherical obstacles inside the cube or the ball (field/obstacles.hpp), each with the transition width
+  // above as its ramp's width: f_1 times ramp(d / w) for DFVN (any N) and 2D curl noise, Bridson's psi_c
+  // for 3D curl noise. Checked against the dimension and the domain by DfvnField<N>.
+  std::vector<Obstacle> obstacles = {};
 
   // throws std::invalid_argument unless the frequency is finite and positive, the phase finite, the
   // constraint's transition width is in (0, 1/4], a periodic field has a periodic basis and no constraint,
-  // and a curl field has no constraint (its dimension is checked by DfvnField<N>)
+  // a curl field has no constraint but the cube or the ball with Bound::ramp, and obstacles have the cube or
+  // the ball (their dimension and placement are checked by DfvnField<N>)
   void validate() const;
 };
 
@@ -111,6 +119,8 @@ class DfvnField {
   // (psi, 0, 0); c is its curl (the tests compare c with its central differences). Throws
   // std::logic_error for a dfvn field.
   std::array<double, 3> curl_potential(const Vec<N>& x) const;
+  // Whether x lies in the closed domain and outside every obstacle.
+  bool contains(const Vec<N>& x) const;
   bool in_domain(const Vec<N>& x) const;
   void check_in_domain(const Vec<N>& x, std::string_view what) const;
   Vec<N> velocity(const Vec<N>& x) const { return evaluate(x).velocity; }
@@ -128,10 +138,12 @@ class DfvnField {
  private:
   std::shared_ptr<const NoiseFunctions<N>> noise_;  // shared: a field is cheap to copy
   std::shared_ptr<const NoiseFunctions<N>> curl_noise_;  // curl in 3D: psi_3 is its first function
-  std::shared_ptr<const ConstraintFunction<N>> constraint_;  // null: the free field
   std::shared_ptr<const HeightField> height_;  // a lift's surface (null without --lift), for the domain check
   Vec<N> stretch_u_ = Vec<N>::Zero();           // the stretch's unit direction (0 without --stretch)
   double stretch_s_minus_1_ = 0.0;
+  std::shared_ptr<const ConstraintFunction<N>> constraint_;  // null: the free field (and 3D curl noise)
+  // 3D curl noise's potential and its Jacobian rows, with Bridson's boundary applied.
+  void curl_potential_3d(const Vec<N>& x, std::array<double, 3>& psi, std::array<Vec<N>, 3>& jacobian) const;
   FieldOptions options_;
   std::uint64_t seed_;
   double scale_;

@@ -28,7 +28,7 @@ TraceStats trace_points(const TracePointsQuery& query, const double* points, std
     const bool bounded = constraint == FieldConstraint::inside_cube || constraint == FieldConstraint::inside_ball;
     const TraceStats stats =
         trace_table<N>(field, query.trace, points, rows, out, query.time,
-                       [&](const Vec<N>& x) { return !bounded || satisfies_constraint<N>(constraint, x); },
+                       [&](const Vec<N>& x) { return !bounded || field.contains(x); },
                        bounded ? OnReject::retrace : OnReject::drop, query.threads, {})
             .stats;
     if (query.field.periodic) wrap_to_unit_torus(out, rows * N);

@@ -7,6 +7,7 @@
 
 #include "dfvn/noise/gradient_noise.hpp"
 #include "dfvn/noise/simplex_noise.hpp"
+#include "dfvn/noise/simplex_separate.hpp"
 #include "dfvn/noise/turning_bands.hpp"
 
 namespace dfvn {
@@ -22,6 +23,7 @@ std::string_view to_string(NoiseBasis basis) {
     case NoiseBasis::simplex: return "simplex";
     case NoiseBasis::turning_bands: return "turning-bands";
     case NoiseBasis::quintic_gradient: return "quintic-gradient";
+    case NoiseBasis::simplex_separate: return "simplex-separate";
   }
   return "?";
 }
@@ -43,6 +45,7 @@ std::shared_ptr<const NoiseFunctions<N>> make_noise_functions(NoiseBasis basis, 
     case NoiseBasis::simplex: return std::make_shared<const SimplexNoiseFunctions<N>>(seed, phase);
     case NoiseBasis::turning_bands: return std::make_shared<const TurningBandsNoise<N>>(seed, Simd::best, phase);
     case NoiseBasis::quintic_gradient: return std::make_shared<const QuinticGradientNoise<N>>(seed, phase);
+    case NoiseBasis::simplex_separate: return std::make_shared<const SimplexSeparateNoiseFunctions<N>>(seed, phase);
   }
   throw std::invalid_argument("unknown noise basis");
 }

@@ -25,14 +25,17 @@ struct NoiseSample {
 // orthonormal frames (noise/turning_bands.hpp): healthy in every dimension, the default.
 // quintic_gradient: Perlin-style gradient noise with the quintic fade on a lattice, 2^N corners per
 // function (noise/gradient_noise.hpp): the noise of the paper's image-warping shader (Table 2).
-enum class NoiseBasis { simplex, turning_bands, quintic_gradient };
+// simplex_separate: the same simplex noise, one traversal per function at an offset point,
+// n_i(x) = S(x + o_i) (noise/simplex_separate.hpp): bitangent noise's reference form (seeds/004), where
+// simplex is its one-traversal optimised form; the two separate the causes of simplex's collapse.
+enum class NoiseBasis { simplex, turning_bands, quintic_gradient, simplex_separate };
 inline constexpr NoiseBasis kDefaultNoiseBasis = NoiseBasis::turning_bands;
 inline constexpr NoiseBasis kAllNoiseBases[] = {NoiseBasis::simplex, NoiseBasis::turning_bands,
-                                                 NoiseBasis::quintic_gradient};
+                                                 NoiseBasis::quintic_gradient, NoiseBasis::simplex_separate};
 
 NoiseBasis parse_noise_basis(std::string_view name);  // throws std::invalid_argument listing the names
 std::string_view to_string(NoiseBasis basis);
-std::string noise_basis_names();  // "simplex, turning-bands, quintic-gradient"
+std::string noise_basis_names();  // "simplex, turning-bands, quintic-gradient, simplex-separate"
 
 // N-1 independent, seeded, deterministic C2 noise functions n_i: R^N -> R with zero mean.
 template <int N>

@@ -71,8 +71,8 @@ void CnjOptions::validate() const {
         "curl noise has no reprojection (its streamlines are not intersections of iso-surfaces): --reproject none");
   if (field == FieldKind::curl && domain != CnjDomain::torus && domain_mode == DomainMode::conformant)
     throw std::invalid_argument(
-        "curl noise has no boundary treatment (Bridson's boundaries are not implemented): conformant CNJ in the "
-        "cube or ball needs --field dfvn; use the torus or --domain-mode drop");
+        "CNJ along curl noise has no boundary treatment (Bridson's boundaries exist for `field` only): conformant CNJ "
+        "in the cube or ball needs --field dfvn; use the torus or --domain-mode drop");
   if (!(boundary_width > 0.0 && boundary_width <= 1e6))
     throw std::invalid_argument(fmt::format("boundary width must be in (0, 1e6] lattice spacings, got {:g}", boundary_width));
   // Refinements double the steps kMaxRefinements times: keep that an int.

@@ -48,14 +48,31 @@ done
 # Refused, one line each.
 expect_error field_4d "" "2D and 3D" field --input p4.csv --field curl -o never.csv
 expect_error diagnose_4d "" "2D and 3D" field --diagnose --dim 4 --field curl
-expect_error field_cube "" "no boundary" field --input p3.csv --field curl --domain cube
-expect_error field_ball "" "no boundary" field --diagnose --field curl --domain ball
+expect_error field_cube "" "bound ramp" field --input p3.csv --field curl --domain cube
+expect_error field_ball "" "bound ramp" field --diagnose --field curl --domain ball
 expect_error sample_4d "" "2D and 3D" --dim 4 --grid 4 --field curl -q
 expect_error sample_newton "" "no reprojection" --dim 3 --grid 4 --field curl --reproject newton -q
 expect_error sample_gauss_newton "" "no reprojection" --dim 2 --grid 4 --field curl --reproject gauss-newton -q
 expect_error sample_cube "" "no boundary" --dim 3 --grid 4 --field curl --domain cube -q
 expect_error sample_sphere "" "surface" --dim 3 --grid 4 --field curl --on sphere -q
 expect_error unknown_field "" "field" field --input p3.csv --field bitangent
+
+# Bridson's boundaries and obstacles (issue 26 item 2): accepted with --bound ramp; bad obstacles refused.
+printf '0.5,0.5,0.5\n0.2,0.3,0.4\n' >pc.csv
+"$bin" field --input pc.csv --field curl --domain cube --bound ramp --obstacle sphere:0.5,0.5,0.5,0.1 -o ob.csv && ok ||
+  bad "field --field curl --domain cube --bound ramp --obstacle"
+"$bin" field --input pc.csv --domain ball --obstacle sphere:0.5,0.5,0.5,0.1 --obstacle sphere:0.5,0.5,0.25,0.05 \
+  --boundary-width 0.02 -o ob2.csv && ok || bad "field --domain ball with two obstacles"
+expect_finite obstacles ob.csv ob2.csv
+expect_error obstacle_outside "" "inside the cube" field --input pc.csv --domain cube --obstacle sphere:1.5,0.5,0.5,0.1 -o never.csv
+expect_error obstacle_radius "" "radius must be positive" field --input pc.csv --domain cube --obstacle sphere:0.5,0.5,0.5,-0.1 -o never.csv
+expect_error obstacle_zero "" "radius must be positive" field --input pc.csv --domain cube --obstacle sphere:0.5,0.5,0.5,0 -o never.csv
+expect_error obstacle_nan "" "finite" field --input pc.csv --domain cube --obstacle sphere:nan,0.5,0.5,0.1 -o never.csv
+expect_error obstacle_arity "" "centre coordinates" field --input pc.csv --domain cube --obstacle sphere:0.5,0.5,0.1 -o never.csv
+expect_error obstacle_shape "" "sphere:CX" field --input pc.csv --domain cube --obstacle box:0.5,0.5,0.5,0.1 -o never.csv
+expect_error obstacle_free "" "cube or ball" field --input pc.csv --obstacle sphere:0.5,0.5,0.5,0.1 -o never.csv
+expect_error obstacle_overlap "" "closer than" field --input pc.csv --domain cube --obstacle sphere:0.4,0.5,0.5,0.1 \
+  --obstacle sphere:0.6,0.5,0.5,0.1 -o never.csv
 [[ ! -e never.csv ]] && ok || bad "a refused field wrote never.csv"
 
 finish cli_curl

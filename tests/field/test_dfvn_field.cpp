@@ -114,7 +114,11 @@ TYPED_TEST(FieldTest, SpeedDistributionIsHealthyOnUniformRandomPoints) {
   const bool healthy = d.median_over_rms >= 0.4 && d.fraction_below_1_percent <= 0.004 && std::abs(d.rms_speed - 1.0) <= 0.04;
   std::printf("%s N=%d RMS |c| %.4f, median/RMS %.3g, q10/RMS %.3g, below 1%%: %.5f\n", to_string(TypeParam::basis).data(),
               N, d.rms_speed, d.median_over_rms, d.q10_over_rms, d.fraction_below_1_percent);
-  const bool expected_healthy = TypeParam::basis != NoiseBasis::simplex || N == 2;
+  // simplex-separate (one traversal per function) is healthy in 3D, where the fused traversal's shared
+  // envelope is what stills the field, and collapses from 4D on, where the kernel holes do.
+  const bool expected_healthy = TypeParam::basis == NoiseBasis::simplex            ? N == 2
+                                : TypeParam::basis == NoiseBasis::simplex_separate ? N <= 3
+                                                                                   : true;
   EXPECT_EQ(healthy, expected_healthy);
 }
 
@@ -132,11 +136,13 @@ TYPED_TEST(FieldTest, DivergenceOnUniformRandomPoints) {
   const FieldDiagnosis d = diagnose_field(o);
   std::printf("%s N=%d |div c|/|Dc|: median %.3g p95 %.3g max %.3g (still points %llu)\n", to_string(TypeParam::basis).data(),
               N, d.divergence_median, d.divergence_p95, d.divergence_max, static_cast<unsigned long long>(d.still_points));
-  if (TypeParam::basis != NoiseBasis::simplex || N <= 5) {
+  // simplex-separate: the median just above 1e-8 in 7D-8D (1.0e-8, 1.3e-8), for the same reason.
+  if ((TypeParam::basis != NoiseBasis::simplex || N <= 5) && (TypeParam::basis != NoiseBasis::simplex_separate || N <= 6)) {
     EXPECT_LE(d.divergence_median, 1e-8);
     EXPECT_LE(d.divergence_p95, 1e-6);
   }
-  if (TypeParam::basis != NoiseBasis::simplex) {
+  // Both simplex forms have still regions (no vertex in range) from 6D on.
+  if (TypeParam::basis != NoiseBasis::simplex && (TypeParam::basis != NoiseBasis::simplex_separate || N <= 5)) {
     EXPECT_EQ(d.still_points, 0u);
   }
 }

@@ -16,7 +16,8 @@ namespace {
 
 using testing::BasisDim;
 using AllThreeBases = ::testing::Types<DFVN_BASIS_DIMENSIONS(NoiseBasis::simplex), DFVN_BASIS_DIMENSIONS(NoiseBasis::turning_bands),
-                                       DFVN_BASIS_DIMENSIONS(NoiseBasis::quintic_gradient)>;
+                                       DFVN_BASIS_DIMENSIONS(NoiseBasis::quintic_gradient),
+                                       DFVN_BASIS_DIMENSIONS(NoiseBasis::simplex_separate)>;
 
 template <typename T>
 class NoisePhaseTest : public ::testing::Test {

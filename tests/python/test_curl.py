@@ -51,7 +51,7 @@ def test_curl_trace_defaults_to_no_reprojection_and_refuses_one():
 def test_curl_refuses_high_dimensions_and_bounded_domains():
     with pytest.raises(ValueError, match="2D and 3D"):
         dfvn.field(random_points(5, 4, seed=1), field="curl")
-    with pytest.raises(ValueError, match="no boundary"):
+    with pytest.raises(ValueError, match="bound ramp"):
         dfvn.field(random_points(5, 3, seed=1), field="curl", domain="cube")
     with pytest.raises(ValueError):
         dfvn.field(random_points(5, 3, seed=1), field="bitangent")
@@ -70,3 +70,23 @@ def test_curl_cnj_equals_the_cli(cli, tmp_path):
     np.testing.assert_array_equal(points, np.load(tmp_path / "cnj.npy"))
     assert not np.array_equal(points, dfvn.sample("cnj", 3, grid=5, seed=4))
     np.testing.assert_array_equal(dfvn.CNJ(3, seed=4, field="curl").random(grid=5), points)
+
+
+def test_obstacles_equal_the_cli_and_bad_ones_are_refused(cli, tmp_path):
+    points = np.random.default_rng(2).uniform(0.0, 1.0, size=(50, 3))
+    path = tmp_path / "points.csv"
+    np.savetxt(path, points, delimiter=",", fmt="%.17g")
+    for field in ("curl", "dfvn"):
+        out = cli("field", "--field", field, "--domain", "cube", "--bound", "ramp", "--obstacle", "sphere:0.5,0.5,0.5,0.1",
+                  "--input", path)
+        table = np.loadtxt(out.splitlines()[1:], delimiter=",", ndmin=2)
+        c, _ = dfvn.field(points, field=field, domain="cube", bound="ramp", obstacles=["sphere:0.5,0.5,0.5,0.1"])
+        np.testing.assert_array_equal(c, table[:, 3:6])
+    starts = points[np.linalg.norm(points - 0.5, axis=1) > 0.1]
+    ends = dfvn.trace(starts, 0.1, domain="cube", steps=4, obstacles=["sphere:0.5,0.5,0.5,0.1"])
+    assert (np.linalg.norm(ends - 0.5, axis=1) >= 0.1).all()
+    for bad in ("sphere:1.5,0.5,0.5,0.1", "sphere:0.5,0.5,0.5,-0.1", "sphere:0.5,0.5,0.1", "sphere:nan,0.5,0.5,0.1"):
+        with pytest.raises(ValueError):
+            dfvn.field(points, domain="cube", obstacles=[bad])
+    with pytest.raises(ValueError, match="cube' or 'ball"):
+        dfvn.field(points, obstacles=["sphere:0.5,0.5,0.5,0.1"])
