@@ -47,11 +47,14 @@ TYPED_TEST(FieldStretchTest, MeetsTheDivergenceTargetsForEveryBasis) {
       // test_dfvn_field.cpp: |Dc| is tiny in most of space); it is held to them where it meets them.
       // Its RMS |c| from 5D on, a mean over a field that is nearly still in most of space, is off by 6%
       // without a stretch too (1.058 on these 20000 points, 0.957 for seed 2).
-      if (basis != NoiseBasis::simplex || N <= 5) {
+      // simplex-separate (data/simplex_collapse.md) is held where its own unstretched field is: divergence
+      // up to 6D; its measured amplitude has a 4-23% standard error from 5D on, so RMS up to 4D.
+      const bool separate = basis == NoiseBasis::simplex_separate;
+      if ((basis != NoiseBasis::simplex || N <= 5) && (!separate || N <= 6)) {
         EXPECT_LE(d.divergence_median, 1e-8);
         EXPECT_LE(d.divergence_p95, 1e-6);
       }
-      if (basis != NoiseBasis::simplex || N <= 4) EXPECT_NEAR(d.rms_speed, 1.0, 0.03);
+      if ((basis != NoiseBasis::simplex && !separate) || N <= 4) EXPECT_NEAR(d.rms_speed, 1.0, 0.03);
     }
 }
 
