@@ -15,6 +15,9 @@
 # expect_message NAME PATTERN: one check, that the last expect_error's stderr ($work/err) matches the
 #   extended regular expression (grep -E) PATTERN anywhere. Escape ( ) { } | + ? ^ $ [ ] . \ to mean
 #   them literally.
+# same_as_recorded NAME FILE REFERENCE: one check, that FILE with its times blanked as for REFERENCE's
+#   name (normalise_times.py goes by the name) is byte for byte $recorded/REFERENCE, the files
+#   test_cli_reference.sh records. normalise_times FILE prints FILE so blanked.
 # finish NAME: prints "NAME: P passed, F failed" and exits 0 if no check failed, 1 otherwise.
 
 bin=${DFVN_SAMPLE:?set DFVN_SAMPLE to the dfvn-sample binary}
@@ -65,6 +68,13 @@ expect_finite() {
       ok
     fi
   done
+}
+
+recorded="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/reference"
+normalise_times() { /usr/bin/python3 "$recorded/../normalise_times.py" "$1"; }
+same_as_recorded() {
+  mkdir -p "$work/named" && cp "$2" "$work/named/$(basename "$3")"
+  if cmp -s <(normalise_times "$work/named/$(basename "$3")") "$recorded/$3"; then ok; else bad "$1: $2 differs from $3"; fi
 }
 
 finish() {

@@ -8,37 +8,28 @@
 set -u
 source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-reference="$here/reference"
-normalise() { /usr/bin/python3 "$here/normalise_times.py" "$1"; }
 cp "$here/../../data/points_3d_example.csv" "$work/points_3d.csv"
 cd "$work" || exit 1
 
-# same NAME FILE REFERENCE: FILE (times blanked as for REFERENCE's name: normalise_times.py goes by the
-# name) is byte for byte the recorded REFERENCE.
-same() {
-  mkdir -p named && cp "$2" "named/$(basename "$3")"
-  if cmp -s <(normalise "named/$(basename "$3")") "$reference/$3"; then ok; else bad "$1: $2 differs from $3"; fi
-}
-
 # field: free (turning bands), simplex from standard input, the cube, the torus, the diagnosis.
-"$bin" field --input points_3d.csv -o field.csv --phase 0 && same "field --phase 0" field.csv field.csv
-"$bin" field --frequency 2 --noise simplex --phase 0 <points_3d.csv >stdin.csv && same "simplex --phase 0" stdin.csv field_stdin.stdout
+"$bin" field --input points_3d.csv -o field.csv --phase 0 && same_as_recorded "field --phase 0" field.csv field.csv
+"$bin" field --frequency 2 --noise simplex --phase 0 <points_3d.csv >stdin.csv && same_as_recorded "simplex --phase 0" stdin.csv field_stdin.stdout
 "$bin" field --input points_3d.csv --domain cube --bound eq13 --boundary-width 0.2 --phase -0.0 >cube.csv &&
-  same "cube --phase -0.0" cube.csv field_cube.stdout
-"$bin" field --input points_3d.csv --domain torus --frequency 3 --phase 0 >torus.csv && same "torus --phase 0" torus.csv field_torus.stdout
-"$bin" field --diagnose --diagnose-points 2000 --dim 4 --phase 0 >diagnose.csv && same "diagnose --phase 0" diagnose.csv field_diagnose.stdout
+  same_as_recorded "cube --phase -0.0" cube.csv field_cube.stdout
+"$bin" field --input points_3d.csv --domain torus --frequency 3 --phase 0 >torus.csv && same_as_recorded "torus --phase 0" torus.csv field_torus.stdout
+"$bin" field --diagnose --diagnose-points 2000 --dim 4 --phase 0 >diagnose.csv && same_as_recorded "diagnose --phase 0" diagnose.csv field_diagnose.stdout
 # sample: the 2D main job (statistics and JSON), the ball with simplex, CNJ's points on standard output.
 "$bin" --dim 2 --grid 8 --realizations 3 --no-timing -q -o main_2d.csv --json main_2d.json --phase 0 &&
-  same "sample --phase 0" main_2d.csv main_2d.csv && same "sample --phase 0 json" main_2d.json main_2d.json
+  same_as_recorded "sample --phase 0" main_2d.csv main_2d.csv && same_as_recorded "sample --phase 0 json" main_2d.json main_2d.json
 "$bin" --dim 3 --grid 6 --domain ball --bound ramp --methods cnj --noise simplex --no-timing -q --phase 0 >ball.csv &&
-  same "sample ball --phase 0" ball.csv main_ball.stdout
-"$bin" --dim 2 --grid 5 --methods cnj --no-stats --points - -q --phase 0 >points.csv && same "sample points --phase 0" points.csv main_stdout.stdout
+  same_as_recorded "sample ball --phase 0" ball.csv main_ball.stdout
+"$bin" --dim 2 --grid 5 --methods cnj --no-stats --points - -q --phase 0 >points.csv && same_as_recorded "sample points --phase 0" points.csv main_stdout.stdout
 
 # The sphere's CNJ takes the phase too.
-"$bin" sample --dim 3 --grid 6 --on sphere --no-timing -q --phase 0 >sphere.csv && same "sphere --phase 0" sphere.csv main_sphere.stdout
+"$bin" sample --dim 3 --grid 6 --on sphere --no-timing -q --phase 0 >sphere.csv && same_as_recorded "sphere --phase 0" sphere.csv main_sphere.stdout
 "$bin" sample --dim 3 --grid 6 --on sphere --no-timing -q --phase 1 >sphere_1.csv
 mkdir -p moved && cp sphere_1.csv moved/main_sphere.stdout
-if cmp -s <(normalise moved/main_sphere.stdout) "$reference/main_sphere.stdout"; then bad "sample --on sphere --phase 1 changed nothing"; else ok; fi
+if cmp -s <(normalise_times moved/main_sphere.stdout) "$recorded/main_sphere.stdout"; then bad "sample --on sphere --phase 1 changed nothing"; else ok; fi
 
 # A phase moves the points and the field; 2 pi later they are back, pi later the f_i change sign.
 "$bin" --dim 2 --grid 5 --methods cnj --no-stats --points - -q --phase 1 >points_1.csv

@@ -10,21 +10,14 @@
 set -u
 source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-reference="$here/reference"
-normalise() { /usr/bin/python3 "$here/normalise_times.py" "$1"; }
 cp "$here/../../data/points_3d_example.csv" "$work/points_3d.csv"
 cd "$work" || exit 1
 cut -d, -f1,2 points_3d.csv >points_2d.csv
 
-same() {
-  mkdir -p named && cp "$2" "named/$(basename "$3")"
-  if cmp -s <(normalise "named/$(basename "$3")") "$reference/$3"; then ok; else bad "$1: $2 differs from $3"; fi
-}
-
 # Absent: the recorded output. S = 1: the same bytes.
-"$bin" field --input points_3d.csv -o field.csv && same "field without a transform" field.csv field.csv
+"$bin" field --input points_3d.csv -o field.csv && same_as_recorded "field without a transform" field.csv field.csv
 "$bin" field --input points_3d.csv --stretch 1,-2,0.5:1 -o s1.csv && cmp -s s1.csv field.csv && ok || bad "--stretch U:1 changed the field"
-"$bin" --dim 2 --grid 5 --methods cnj --no-stats --points - -q >points.csv && same "sample without a transform" points.csv main_stdout.stdout
+"$bin" --dim 2 --grid 5 --methods cnj --no-stats --points - -q >points.csv && same_as_recorded "sample without a transform" points.csv main_stdout.stdout
 
 # Each transform changes the field; the columns stay those of field.
 for args in "--stretch 1,-2,0.5:3" "--time 0.25" "--time 0" "--phase 1 --time 0.25"; do
