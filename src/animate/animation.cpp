@@ -128,13 +128,13 @@ AnimationResult run_animation(const AnimationOptions& options, std::uint64_t see
   result.trace_time = cnj.step_scale * average_neighbour_distance(N) * result.spacing;
   result.frame_time = options.phase_step * result.trace_time;
   result.frame_steps = animation_frame_steps(options);
-  const FieldConstraint constraint =
-      conformant ? (ball ? FieldConstraint::inside_ball : FieldConstraint::inside_cube) : FieldConstraint::none;
-  const double width = std::min(cnj.boundary_width * result.spacing, 0.25);
   const Box domain{0.0, 1.0, ball};
+  // CNJ's field for this lattice (the torus and other field kinds are refused by validate()), turned to a phase.
+  const FieldOptions field_options = cnj_field_options(cnj, result.spacing);
   const auto field_at = [&](double phase) {
-    return DfvnField<N>(seed, FieldOptions{cnj.noise, cnj.frequency / result.spacing, constraint, width, cnj.bound,
-                                           false, FieldKind::dfvn, phase});
+    FieldOptions at = field_options;
+    at.phase = phase;
+    return DfvnField<N>(seed, at);
   };
 
   std::vector<double> current = animation_start_sites(options);

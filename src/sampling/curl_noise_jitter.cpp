@@ -80,8 +80,14 @@ void CnjOptions::validate() const {
     throw std::invalid_argument(fmt::format("CNJ takes at most 2^20 steps, got {}", cnj_steps(*this)));
 }
 
+namespace {
+double transition_width_for_spacing(const CnjOptions& options, double spacing) {
+  return std::min(options.boundary_width * spacing, 0.25);
+}
+}  // namespace
+
 double cnj_transition_width(const CnjOptions& options, const LatticeSpec& lattice) {
-  return std::min(options.boundary_width * lattice.spacing(), 0.25);
+  return transition_width_for_spacing(options, lattice.spacing());
 }
 
 namespace {
@@ -99,6 +105,14 @@ FieldConstraint field_constraint(const CnjOptions& options) {
 }
 
 }  // namespace
+
+FieldOptions cnj_field_options(const CnjOptions& options, double spacing) {
+  return FieldOptions{options.noise,     options.frequency / spacing,
+                      field_constraint(options), transition_width_for_spacing(options, spacing),
+                      options.bound,     options.domain == CnjDomain::torus,
+                      options.field,     options.phase,
+                      options.transform};
+}
 
 LatticeSpec cnj_lattice(const LatticeSpec& lattice, CnjDomain domain) {
   LatticeSpec out = lattice;
@@ -140,10 +154,7 @@ CnjResult curl_noise_jitter(const LatticeSpec& requested_lattice, const CnjOptio
   const bool torus = options.domain == CnjDomain::torus;
   CnjResult result;
   result.trace_time = options.step_scale * average_neighbour_distance(N) * lattice.spacing();
-  const DfvnField<N> field(seed, FieldOptions{options.noise, options.frequency / lattice.spacing(),
-                                              field_constraint(options), cnj_transition_width(options, lattice),
-                                              options.bound, torus, options.field, options.phase,
-                                              options.transform});
+  const DfvnField<N> field(seed, cnj_field_options(options, lattice.spacing()));
   result.field_frequency = field.frequency();
   const Box domain{0.0, 1.0, options.domain == CnjDomain::ball};
   const std::vector<double> sites = cnj_start_sites(lattice, options.domain);

@@ -13,6 +13,7 @@
 
 #include "dfvn/core/progress.hpp"
 #include "dfvn/field/constraint.hpp"
+#include "dfvn/field/dfvn_field.hpp"
 #include "dfvn/integrate/trace.hpp"
 #include "dfvn/sampling/lattice.hpp"
 #include "dfvn/core/point_set.hpp"
@@ -89,6 +90,12 @@ TraceOptions cnj_trace_options(const CnjOptions& options);
 
 // The transition width w in length units for a lattice: min(boundary_width * spacing, 1/4).
 double cnj_transition_width(const CnjOptions& options, const LatticeSpec& lattice);
+
+// The field CNJ traces along for a lattice of this spacing: the noise at frequency / spacing cycles per
+// unit length, bounded by the cube or ball in conformant mode (transition width min(boundary_width *
+// spacing, 1/4)), free in drop mode and periodic on the torus, with the options' field kind, phase and
+// transform. animate builds its frames' fields from it too.
+FieldOptions cnj_field_options(const CnjOptions& options, double spacing);
 
 // The lattice CNJ starts from: `lattice`, or its cell-centred form on the torus.
 LatticeSpec cnj_lattice(const LatticeSpec& lattice, CnjDomain domain);
