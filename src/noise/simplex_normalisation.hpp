@@ -3,6 +3,7 @@
 // closed form (contrast turning_bands.hpp): the amplitudes are measured.
 #pragma once
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
@@ -51,16 +52,18 @@ inline constexpr AmplitudeEntry kSeparateFieldAmplitudes[] = {
     {8, 277.175, 0.23},
 };
 
-inline double simplex_separate_field_amplitude(int dimension) {
-  for (const auto& entry : kSeparateFieldAmplitudes)
+// The amplitude a table holds for a dimension; throws std::invalid_argument if it has none.
+template <std::size_t Size>
+double field_amplitude_in(const AmplitudeEntry (&table)[Size], int dimension) {
+  for (const auto& entry : table)
     if (entry.dimension == dimension) return entry.amplitude;
   throw std::invalid_argument("no field amplitude for dimension " + std::to_string(dimension));
 }
 
-inline double simplex_field_amplitude(int dimension) {
-  for (const auto& entry : kFieldAmplitudes)
-    if (entry.dimension == dimension) return entry.amplitude;
-  throw std::invalid_argument("no field amplitude for dimension " + std::to_string(dimension));
+inline double simplex_separate_field_amplitude(int dimension) {
+  return field_amplitude_in(kSeparateFieldAmplitudes, dimension);
 }
+
+inline double simplex_field_amplitude(int dimension) { return field_amplitude_in(kFieldAmplitudes, dimension); }
 
 }  // namespace dfvn
