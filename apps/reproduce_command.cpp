@@ -292,7 +292,7 @@ struct ReproduceCommand : Subcommand {
         ->capture_default_str()
         ->check(CLI::Range(1, 10000000));
     c->add_option("--escape-starts", constructions.escape_starts,
-                  "Uniform starts in the cube outside the obstacle per field and variant for the escape fractions")
+                  "Uniform starts in the cube outside the obstacle, per field and 64-step variant, for the escape fractions")
         ->capture_default_str()
         ->check(CLI::Range(1, 10000000));
     progress.add_to(*c);
