@@ -70,6 +70,12 @@ for p in problems:
 sys.exit(1 if problems else 0)
 PY
 
+# Results depend on the seed only, never on the thread count (ns_per_evaluation, column 13, is a time).
+"$bin" reproduce constructions --divergence-points 3000 --speed-points 300 --trace-starts 6 --escape-starts 40 \
+  --threads 1 --out c1 -q >/dev/null 2>&1 &&
+  cmp -s <(cut -d, -f13 --complement c/constructions.csv) <(cut -d, -f13 --complement c1/constructions.csv) &&
+  cmp -s c/curl_obstacle.csv c1/curl_obstacle.csv && ok || bad "constructions differ between 1 thread and all cores"
+
 # Bad input: one line, non-zero exit, no folder.
 expect_error "constructions no starts" "" "trace-starts" reproduce constructions --trace-starts 0 --out bad1
 [[ ! -e bad1 ]] && ok || bad "a refused constructions run made its folder"
