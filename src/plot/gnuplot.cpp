@@ -36,6 +36,7 @@ std::string_view plot_program_name(PlotProgram program) {
     case PlotProgram::spectrum: return "spectrum.gp";
     case PlotProgram::animation: return "animation.gp";
     case PlotProgram::figure8: return "figure8.gp";
+    case PlotProgram::curl_obstacle: return "curl_obstacle.gp";
   }
   return "?";
 }
@@ -49,6 +50,7 @@ std::string_view plot_program_text(PlotProgram program) {
     case PlotProgram::spectrum: return kSpectrumProgram;
     case PlotProgram::animation: return kAnimationProgram;
     case PlotProgram::figure8: return kFigure8Program;
+    case PlotProgram::curl_obstacle: return kCurlObstacleProgram;
   }
   return "";
 }

@@ -22,6 +22,7 @@ enum class PlotProgram {
   spectrum,     // scripts/spectrum.gp: periodogram and radial average
   animation,    // scripts/animation.gp: animate's strip of frames with trails
   figure8,      // scripts/figure8.gp: drop against conformant animation, count per frame and tracks
+  curl_obstacle,  // scripts/curl_obstacle.gp: Bridson's Figure 1, curl noise streamlines around a disc
 };
 
 // "figure4.gp", ...; and the program's text as compiled in.

@@ -133,7 +133,7 @@ help_all = run("--help-all")
 check(help_all.returncode == 0, "--help-all exits 0")
 parts = sections(help_all.stdout)
 expected = ["dfvn-sample " + s for s in ["sample", "field", "reproduce", "reproduce table1", "reproduce table2",
-                                          "reproduce cnj-study", "reproduce integration", "reproduce figure8", "stats",
+                                          "reproduce cnj-study", "reproduce integration", "reproduce figure8", "reproduce constructions", "stats",
                                           "animate"]]
 check(sorted(parts) == sorted(expected), f"--help-all has a section per subcommand: {sorted(parts)}")
 
