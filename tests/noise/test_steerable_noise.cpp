@@ -260,6 +260,25 @@ TYPED_TEST(SteerableTest, CircularMetricDerivativesMatchDifferences) {
   EXPECT_LT((noise.metric(far) - steer_metric<N>(tangent, kDefaultSteerK)).norm(), 1e-9);
 }
 
+// The phase turns the quintic basis's gradients (noise/noise_functions.hpp): every term is linear in g, so
+// n(alpha + pi) = -n(alpha) and n(alpha + 2 pi) = n(alpha) up to the rounding of cos and sin; phase 0 is
+// the phase-free noise.
+TYPED_TEST(SteerableTest, PhaseHasPeriodTwoPiAndFlipsAtPi) {
+  constexpr int N = TypeParam::value;
+  for (const SteerSpec& spec : {constant_spec<N>(skew_unit<N>()), circular_spec()}) {
+    const SteerableNoise<N> a(6, 0.7, spec), flipped(6, 0.7 + M_PI, spec), turned(6, 0.7 + 2.0 * M_PI, spec), other(6, 1.2, spec);
+    Vec<N> y;
+    for (int j = 0; j < N; ++j) y[j] = 1.37 * (j + 1) - 2.0;
+    const auto s = a.evaluate(y), f = flipped.evaluate(y), t = turned.evaluate(y), o = other.evaluate(y);
+    for (int i = 0; i < N - 1; ++i) {
+      EXPECT_NEAR(f.value[i], -s.value[i], 1e-12);
+      EXPECT_NEAR(t.value[i], s.value[i], 1e-12);
+      EXPECT_GT(std::abs(o.value[i] - s.value[i]), 1e-6);
+      EXPECT_LT((f.gradient[i] + s.gradient[i]).norm(), 1e-11);
+    }
+  }
+}
+
 TEST(SteerableSpec, RefusesBadInput) {
   SteerSpec ok;
   ok.direction = {1.0, 2.0};
