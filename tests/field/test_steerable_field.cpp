@@ -2,6 +2,8 @@
 // constant and the circular direction field: the divergence targets of every basis (|div c| / |Dc|
 // median <= 1e-8, p95 <= 1e-6) and RMS |c| within 3% of 1 (the measured amplitude); c runs mostly along u;
 // the refused combinations.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include <gtest/gtest.h>
@@ -64,6 +66,23 @@ TEST(SteerableField, FlowsMostlyAlongTheDirection) {
   }
   std::printf("steerable 2D u = e1: E[c_1^2] / E|c|^2 = %.3f\n", along / total);
   EXPECT_GT(along / total, 0.7);
+}
+
+// The noise domain's margin (noise/noise_domain.hpp) assumes every basis's scale s = 2 pi F / k_eff <= 2.5 F,
+// i.e. k_eff >= 2 pi / 2.5 (DfvnField asserts it in debug builds).
+TEST(SteerableField, ScaleStaysInsideTheDomainMargin) {
+  for (const bool circular : {false, true})
+    for (const double k : {0.5, 0.05, 0.99}) {
+      FieldOptions o2 = steerable_options(2, circular), o3 = steerable_options(3, circular), o4 = steerable_options(4, circular);
+      o2.transform.steer.k = o3.transform.steer.k = k;
+      o4.transform.steer.k = std::min(k, 0.9);
+      const double s2 = DfvnField<2>(1, o2).scale(), s3 = DfvnField<3>(1, o3).scale(), s4 = DfvnField<4>(1, o4).scale();
+      std::printf("steerable %s k %.2f: k_eff 2D %.3f, 3D %.3f, 4D %.3f\n", circular ? "circular" : "constant", k,
+                  2.0 * M_PI / s2, 2.0 * M_PI / s3, 2.0 * M_PI / s4);
+      EXPECT_LE(s2, 2.5);
+      EXPECT_LE(s3, 2.5);
+      EXPECT_LE(s4, 2.5);
+    }
 }
 
 TEST(SteerableField, RefusesBadCombinations) {
