@@ -19,6 +19,7 @@ struct AnimateCommand : Subcommand {
   CommonOptions common;
   dfvn::AnimationOptions options;
   std::string lattice = "cubic", noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
+  SteerOptions steer;
   std::string domain = "cube", domain_mode = "conformant", bound = "eq13";
   std::string out = "out/animate";
   ProgressOptions progress;
@@ -80,7 +81,8 @@ struct AnimateCommand : Subcommand {
                     "ramp's d0), at most a quarter of the cube's side")
         ->capture_default_str()
         ->check(kPositiveFinite);
-    add_noise_option(*cmd, noise);
+    add_noise_option(*cmd, noise, true);
+    steer.add_to(*cmd);
     cmd->add_option("--cycles-per-spacing", options.cnj.frequency,
                     "CNJ noise frequency C in cycles per lattice spacing (one cycle = 2 pi / k_eff of the basis); the\n"
                     "field's frequency, C / spacing in cycles per unit length, must be in [2^-50, 2^50]")
@@ -102,6 +104,7 @@ struct AnimateCommand : Subcommand {
   void run() {
     options.lattice = dfvn::parse_start_lattice(lattice);
     options.cnj.noise = dfvn::parse_noise_basis(noise);
+    options.cnj.transform.steer = steer.spec(noise, options.dimension);
     options.cnj.domain = dfvn::parse_cnj_domain(domain);
     options.cnj.domain_mode = dfvn::parse_domain_mode(domain_mode);
     options.cnj.bound = dfvn::parse_bound(bound);

@@ -28,6 +28,7 @@ struct FieldCommand : Subcommand {
   double frequency = 1.0;
   double phase = 0.0;
   TransformOptions transform;
+  SteerOptions steer;
   std::string noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
   std::string field_kind{dfvn::to_string(dfvn::kDefaultFieldKind)};
   std::string domain = "free";
@@ -57,7 +58,8 @@ struct FieldCommand : Subcommand {
                     "below 2^50")
         ->capture_default_str()
         ->check(kNoiseFrequency);
-    add_noise_option(*cmd, noise);
+    add_noise_option(*cmd, noise, true);
+    steer.add_to(*cmd);
     add_field_kind_option(*cmd, field_kind,
                           "With curl: --domain free or torus, or cube or ball\nwith --bound ramp; the columns f1..f{N-1} are then psi_1..psi_{N-1}");
     add_phase_option(*cmd, phase);
@@ -117,6 +119,7 @@ struct FieldCommand : Subcommand {
     o.kind = dfvn::parse_field_kind(field_kind);
     o.phase = phase;
     o.transform = transform.transform();
+    o.transform.steer = steer.spec(noise, dimension);
     if (domain == "cube" || domain == "ball") {
       o.constraint = domain == "cube" ? dfvn::FieldConstraint::inside_cube : dfvn::FieldConstraint::inside_ball;
       o.transition_width = boundary_width;

@@ -114,16 +114,64 @@ CLI::Option* add_dimension_option(CLI::App& cmd, int& dimension, const std::stri
 }
 
 // --noise: the basis of the N-1 noise functions.
-void add_noise_option(CLI::App& cmd, std::string& noise) {
+void add_noise_option(CLI::App& cmd, std::string& noise, bool steerable) {
+  std::vector<std::string> names = {"simplex", "turning-bands", "quintic-gradient", "simplex-separate"};
+  if (steerable) names.push_back("steerable");
   cmd.add_option("--noise", noise,
                  "Noise basis of the N-1 functions: turning-bands (healthy in every dimension), simplex (the\n"
                  "paper's construction, all functions in one shared traversal: in 3D optimised bitangent noise; its\n"
                  "field is nearly still in most of space from 4D on), quintic-gradient (Perlin-style lattice\n"
                  "gradient noise, the noise of the paper's image-warping shader) or simplex-separate (the same\n"
                  "simplex noise, one traversal per function at an offset point: in 3D bitangent noise's reference\n"
-                 "form)")
+                 "form)" +
+                     std::string(steerable ? " or steerable (seed 002's steerable Perlin noise, 2D-4D: elongated along\n"
+                                             "--steer-dir or the circular --steer-field)"
+                                           : ""))
       ->capture_default_str()
-      ->check(CLI::IsMember({"simplex", "turning-bands", "quintic-gradient", "simplex-separate"}));
+      ->check(CLI::IsMember(names));
+}
+
+void SteerOptions::add_to(CLI::App& cmd) {
+  options[0] = cmd.add_option("--steer-dir", direction,
+                              "With --noise steerable: the direction U the noise is elongated along, N comma-separated\n"
+                              "components, any length but not zero (U and -U give the same noise). Default: none")
+                   ->type_name("U");
+  options[1] = cmd.add_option("--steer-field", field,
+                              "With --noise steerable: constant (--steer-dir) or circular (u = (-x2, x1, 0, ...) around the\n"
+                              "origin, isotropic within one lattice cell of its axis)")
+                   ->capture_default_str()
+                   ->check(CLI::IsMember({"constant", "circular"}));
+  options[2] = cmd.add_option("--steer-k", k,
+                              "With --noise steerable: the metric's eigenvalue K along u, in (0, 1] (below 0.99993 in 4D);\n"
+                              "across u it is (4 - K) / (N - 1) - 1e-4, so smaller K elongates more")
+                   ->capture_default_str();
+}
+
+dfvn::SteerSpec SteerOptions::spec(const std::string& noise, int dimension) const {
+  const bool given = options[0]->count() + options[1]->count() + options[2]->count() > 0;
+  dfvn::SteerSpec s;
+  if (noise != "steerable") {
+    if (given) fail("--steer-dir, --steer-field and --steer-k steer --noise steerable, not --noise " + noise);
+    return s;
+  }
+  s.k = k;
+  s.circular = field == "circular";
+  if (options[0]->count() > 0) {
+    for (const std::string& part : CLI::detail::split(direction, ',')) {
+      double value = 0.0;
+      if (!CLI::detail::lexical_cast(CLI::detail::trim_copy(part), value))
+        fail("--steer-dir: '" + part + "' is not a number (U is N comma-separated components)");
+      s.direction.push_back(value);
+    }
+  }
+  if (dimension > 0) {
+    try {
+      dfvn::check_steer_spec(s, dimension);
+    } catch (const std::invalid_argument& e) {
+      fail(e.what());
+    }
+  }
+  return s;
 }
 
 CLI::Option* add_field_kind_option(CLI::App& cmd, std::string& field, const std::string& consequences) {

@@ -39,8 +39,22 @@ extern const CLI::Validator kThreadCount;
 // --dim, checked against the dimensions the library instantiates.
 CLI::Option* add_dimension_option(CLI::App& cmd, int& dimension, const std::string& help);
 
-// --noise: the basis of the N-1 noise functions.
-void add_noise_option(CLI::App& cmd, std::string& noise);
+// --noise: the basis of the N-1 noise functions; `steerable`: steerable is one of them (the subcommand
+// takes SteerOptions too).
+void add_noise_option(CLI::App& cmd, std::string& noise, bool steerable = false);
+
+// --steer-dir U, --steer-field constant|circular and --steer-k K: the direction field of --noise steerable
+// (noise/steerable_noise.hpp). spec() fail()s with one line when one is given without --noise steerable, or
+// (with `dimension` > 0) when the spec does not fit the dimension.
+struct SteerOptions {
+  std::string direction;
+  std::string field = "constant";
+  double k = dfvn::kDefaultSteerK;
+  CLI::Option* options[3] = {};
+
+  void add_to(CLI::App& cmd);
+  dfvn::SteerSpec spec(const std::string& noise, int dimension) const;
+};
 // --field: which divergence-free field the noise makes, dfvn (the paper's) or curl (Bridson's curl noise).
 CLI::Option* add_field_kind_option(CLI::App& cmd, std::string& field, const std::string& consequences);
 // --phase: the noise's phase alpha in radians (rotating gradients; any finite real, default 0).

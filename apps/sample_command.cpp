@@ -57,6 +57,7 @@ struct SampleCommand : Subcommand {
   CLI::Option* stats_option = nullptr;
   CLI::Option* format_option = nullptr;
   TransformOptions transform;
+  SteerOptions steer;
 
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
@@ -143,7 +144,8 @@ struct SampleCommand : Subcommand {
                     "field's frequency, C / spacing in cycles per unit length, must be in [2^-50, 2^50]")
         ->capture_default_str()
         ->check(kNoiseFrequency);
-    add_noise_option(*cmd, noise);
+    add_noise_option(*cmd, noise, true);
+    steer.add_to(*cmd);
     add_field_kind_option(*cmd, field_kind,
                           "CNJ traces along it; with curl:\n--reproject none (its default), --domain torus or "
                           "--domain-mode drop, no --on");
@@ -262,6 +264,7 @@ struct SampleCommand : Subcommand {
       config.grid = dfvn::grid_for_count(config.dimension, count);
     }
     config.cnj.transform = transform.transform();
+    config.cnj.transform.steer = steer.spec(noise, config.dimension);
     if (config.cnj.transform.active())
       dfvn::check_transform_available(config.cnj.transform, config.dimension,
                                       config.on == dfvn::Surface::none && config.cnj.domain == dfvn::CnjDomain::torus);

@@ -65,6 +65,7 @@ set(DFVN_PUBLIC_HEADERS
     noise/noise_transforms.hpp
     noise/simplex_noise.hpp
     noise/simplex_separate.hpp
+    noise/steerable_noise.hpp
     noise/turning_bands.hpp
     quadrature/genz.hpp
     sampling/curl_noise_jitter.hpp

@@ -78,13 +78,29 @@ py::tuple field(const PointArray& points, std::uint64_t seed, double frequency, 
                 const std::optional<double>& boundary_width, const std::string& field_kind,
                 const std::vector<std::string>& obstacles, int threads,
                 const py::object& stretch, const std::optional<double>& time, const std::optional<std::string>& lift,
-                double lift_ramp) {
+                double lift_ramp, const py::object& steer, double steer_k) {
   const PointRows in = point_rows(points, kMinDimension, kMaxDimension);
   FieldQuery query;
   query.dimension = in.dimension;
   query.seed = seed;
   query.field = field_options(frequency, noise, phase, domain, bound, boundary_width, field_kind, obstacles,
                               noise_transform(stretch, time, lift, lift_ramp));
+  // steer: None, 'circular' or a sequence of N reals (the direction U), with noise='steerable'.
+  SteerSpec& spec = query.field.transform.steer;
+  if (py::isinstance<py::str>(steer)) {
+    if (steer.cast<std::string>() != "circular") throw py::value_error("steer takes 'circular' or a direction U (N reals)");
+    spec.circular = true;
+  } else if (!steer.is_none()) {
+    try {
+      spec.direction = steer.cast<std::vector<double>>();
+    } catch (const py::cast_error&) {
+      throw py::value_error("steer takes 'circular' or a direction U (N reals)");
+    }
+  }
+  spec.k = steer_k;
+  if (query.field.noise != NoiseBasis::steerable && (spec.active() || steer_k != kDefaultSteerK))
+    throw py::value_error("steer and steer_k steer noise='steerable', not '" + noise + "'");
+  if (query.field.noise == NoiseBasis::steerable) check_steer_spec(spec, in.dimension);
   query.threads = threads;
   py::array_t<double> velocity = new_array(in.rows, in.dimension);
   py::array_t<double> values = new_array(in.rows, in.dimension - 1);
@@ -135,6 +151,7 @@ void bind_field(py::module_& module) {
              "bound"_a = py::none(), "boundary_width"_a = py::none(),
              "field"_a = std::string(to_string(kDefaultFieldKind)), "obstacles"_a = std::vector<std::string>{}, "threads"_a = 0,
              "stretch"_a = py::none(), "time"_a = py::none(), "lift"_a = py::none(), "lift_ramp"_a = 0.0,
+             "steer"_a = py::none(), "steer_k"_a = kDefaultSteerK,
              R"(The divergence-free field c(x) = cross(grad f_1, ..., grad f_{N-1}) (Eq. 8) at each point.
 
 points: (n, N) array, N = 2..8 (converted to float64 C order if it is not already).
@@ -156,6 +173,8 @@ stretch (default None): 'U:S' or (U, S), f_i(A x) with A = I + (S - 1) u u^T, u 
 `dfvn-sample field --stretch`); time (default None): the (N+1)D basis at (x, time), N <= 7 (`--time`);
 lift (default None, 2D only): 'plane:SX,SY' or 'bump:H,R[,CX,CY]', f(x) = F(x, h(x)) (`--lift`), with
 lift_ramp (default 0.0) the vertical ramp of the paper's Figure 9 (`--lift-ramp`).
+noise 'steerable' (seed 002, N = 2..4) takes steer: a direction U (N reals, any nonzero length) or
+'circular' (`--steer-dir`, `--steer-field circular`), and steer_k (default 0.5, `--steer-k`).
 
 Returns (c, f): c (n, N), the field vector (RMS |c| = 1), and f (n, N-1), the noise values f_i(x);
 the same numbers as `dfvn-sample field` writes.)");

@@ -47,6 +47,7 @@
 #include "dfvn/noise/noise_transforms.hpp"
 #include "dfvn/noise/simplex_noise.hpp"
 #include "dfvn/noise/simplex_separate.hpp"
+#include "dfvn/noise/steerable_noise.hpp"
 #include "dfvn/noise/turning_bands.hpp"
 
 #include "dfvn/quadrature/genz.hpp"

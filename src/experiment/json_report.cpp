@@ -116,6 +116,10 @@ std::string sampling_json(const SampleConfig& config, const std::vector<Sampling
     parameters["cnj"]["lift"] = {{"height", transform.lift.kind == LiftSpec::Kind::plane ? "plane" : "bump"},
                                  {"parameters", transform.lift.parameters},
                                  {"ramp", transform.lift.ramp}};
+  if (transform.steer.active())
+    parameters["cnj"]["steer"] = {{"field", transform.steer.circular ? "circular" : "constant"},
+                                  {"direction", transform.steer.direction},
+                                  {"k", transform.steer.k}};
   parameters["periodic_statistics"] = config.periodic_statistics;
   // null: the protocol's radius, which each pds result gives under "generation".
   parameters["pds"] = {{"radius", config.pds_radius > 0.0 ? ordered_json(config.pds_radius) : ordered_json(nullptr)},

@@ -41,6 +41,10 @@ void FieldOptions::validate() const {
     throw std::invalid_argument("obstacles lie inside a domain: --obstacle needs --domain cube or ball");
   check_noise_phase(phase);
   transform.validate();
+  if (noise == NoiseBasis::steerable && transform.active())
+    throw std::invalid_argument("steerable noise takes no --stretch, --time or --lift (it is steered by --steer-dir or --steer-field)");
+  if (noise != NoiseBasis::steerable && transform.steer.active())
+    throw std::invalid_argument(fmt::format("--steer-dir and --steer-field steer --noise steerable, not {}", to_string(noise)));
   if (transform.time) check_noise_argument(*transform.time, frequency, "--time");
   parse_bound(to_string(bound));  // an unknown enum value throws
   if (periodic && constraint != FieldConstraint::none)
@@ -104,6 +108,8 @@ Vec<N> curl_of(const std::array<Vec<N>, N - 1>& g, const Vec<N>& g3) {
 template <int N>
 std::shared_ptr<const NoiseFunctions<N>> field_noise(const FieldOptions& options, std::uint64_t seed, double time,
                                                      double lift_ramp = 0.0) {
+  if (options.noise == NoiseBasis::steerable)  // validate() refuses a transform beside it
+    return make_steerable_noise<N>(seed, options.phase, options.transform.steer);
   if (!options.transform.active())
     return options.periodic ? make_periodic_noise_functions<N>(options.noise, seed, options.frequency, options.phase)
                             : make_noise_functions<N>(options.noise, seed, options.phase);

@@ -14,6 +14,7 @@
 #include "dfvn/core/dimension.hpp"
 #include "dfvn/noise/noise_functions.hpp"
 #include "dfvn/noise/noise_transforms.hpp"
+#include "dfvn/noise/steerable_noise.hpp"
 
 namespace dfvn {
 
@@ -45,6 +46,10 @@ struct NoiseTransform {
   std::optional<double> time;
   // --lift (2D only): f(x) = F(x, h(x)) for the first function F of the 3D basis.
   LiftSpec lift;
+  // --steer-dir / --steer-field / --steer-k: the direction field of --noise steerable (noise/steerable_noise.hpp).
+  // Not a transform of the basis but its parameters, carried here so that every path that takes a field's
+  // transform (field, sample, animate, Python) takes them; not counted by active() (the basis reads them).
+  SteerSpec steer;
 
   bool active() const { return !stretch_direction.empty() || time.has_value() || lift.active(); }
   // Throws std::invalid_argument with one line for a zero or non-finite direction, S outside

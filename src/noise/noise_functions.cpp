@@ -13,7 +13,7 @@
 namespace dfvn {
 
 NoiseBasis parse_noise_basis(std::string_view name) {
-  for (NoiseBasis basis : kAllNoiseBases)
+  for (NoiseBasis basis : kNamedNoiseBases)
     if (name == to_string(basis)) return basis;
   throw std::invalid_argument("unknown noise basis '" + std::string(name) + "' (allowed: " + noise_basis_names() + ")");
 }
@@ -24,13 +24,14 @@ std::string_view to_string(NoiseBasis basis) {
     case NoiseBasis::turning_bands: return "turning-bands";
     case NoiseBasis::quintic_gradient: return "quintic-gradient";
     case NoiseBasis::simplex_separate: return "simplex-separate";
+    case NoiseBasis::steerable: return "steerable";
   }
   return "?";
 }
 
 std::string noise_basis_names() {
   std::string names;
-  for (NoiseBasis basis : kAllNoiseBases) names += (names.empty() ? "" : ", ") + std::string(to_string(basis));
+  for (NoiseBasis basis : kNamedNoiseBases) names += (names.empty() ? "" : ", ") + std::string(to_string(basis));
   return names;
 }
 
@@ -46,6 +47,8 @@ std::shared_ptr<const NoiseFunctions<N>> make_noise_functions(NoiseBasis basis, 
     case NoiseBasis::turning_bands: return std::make_shared<const TurningBandsNoise<N>>(seed, Simd::best, phase);
     case NoiseBasis::quintic_gradient: return std::make_shared<const QuinticGradientNoise<N>>(seed, phase);
     case NoiseBasis::simplex_separate: return std::make_shared<const SimplexSeparateNoiseFunctions<N>>(seed, phase);
+    case NoiseBasis::steerable:
+      throw std::invalid_argument("steerable noise needs its direction field (--steer-dir or --steer-field circular)");
   }
   throw std::invalid_argument("unknown noise basis");
 }

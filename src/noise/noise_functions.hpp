@@ -28,14 +28,20 @@ struct NoiseSample {
 // simplex_separate: the same simplex noise, one traversal per function at an offset point,
 // n_i(x) = S(x + o_i) (noise/simplex_separate.hpp): bitangent noise's reference form (seeds/004), where
 // simplex is its one-traversal optimised form; the two separate the causes of simplex's collapse.
-enum class NoiseBasis { simplex, turning_bands, quintic_gradient, simplex_separate };
+// steerable: seed 002's steerable Perlin noise (noise/steerable_noise.hpp), 2D-4D only, which needs its
+// direction field (SteerSpec): made by make_steerable_noise, not make_noise_functions, and therefore not in
+// kAllNoiseBases (the bases every dimension and every transform takes), only in kNamedNoiseBases.
+enum class NoiseBasis { simplex, turning_bands, quintic_gradient, simplex_separate, steerable };
 inline constexpr NoiseBasis kDefaultNoiseBasis = NoiseBasis::turning_bands;
 inline constexpr NoiseBasis kAllNoiseBases[] = {NoiseBasis::simplex, NoiseBasis::turning_bands,
                                                  NoiseBasis::quintic_gradient, NoiseBasis::simplex_separate};
+inline constexpr NoiseBasis kNamedNoiseBases[] = {NoiseBasis::simplex, NoiseBasis::turning_bands,
+                                                   NoiseBasis::quintic_gradient, NoiseBasis::simplex_separate,
+                                                   NoiseBasis::steerable};
 
 NoiseBasis parse_noise_basis(std::string_view name);  // throws std::invalid_argument listing the names
 std::string_view to_string(NoiseBasis basis);
-std::string noise_basis_names();  // "simplex, turning-bands, quintic-gradient, simplex-separate"
+std::string noise_basis_names();  // "simplex, turning-bands, quintic-gradient, simplex-separate, steerable"
 
 // N-1 independent, seeded, deterministic C2 noise functions n_i: R^N -> R with zero mean.
 template <int N>
@@ -59,7 +65,8 @@ class NoiseFunctions {
 // every basis turns in its own seeded plane, g(alpha) = p cos alpha + q sin alpha, so each function has
 // period 2 pi in the phase, changes sign at pi, and keeps its k_eff and amplitude; each basis's header
 // says how, and README "Fields that move: --phase" why). Phase 0 is bit for bit the phase-free basis.
-// Throws std::invalid_argument for an unknown basis or a non-finite phase.
+// Throws std::invalid_argument for an unknown basis, for steerable (it needs a SteerSpec:
+// make_steerable_noise) or a non-finite phase.
 template <int N>
 std::shared_ptr<const NoiseFunctions<N>> make_noise_functions(NoiseBasis basis, std::uint64_t seed, double phase = 0.0);
 
