@@ -308,9 +308,15 @@ class NearestStream {
     const double mean_spacing = domain_.side / std::pow(static_cast<double>(total_), 1.0 / n_);
     for (int b = 0; b < static_cast<int>(buckets_.size()); ++b) {
       if (counts_[static_cast<std::size_t>(b)] == 0) continue;
-      for (double h = mean_spacing;; h *= 2.0) {
-        if (measure_bucket(b, h)) break;
+      // The halo the last bucket needed, else the mean spacing; a bucket whose neighbours were not all
+      // within it is measured once more with the halo its distances ask for, which holds them all.
+      double h = halo_ > 0.0 ? halo_ : mean_spacing;
+      for (int attempt = 0;; ++attempt) {
+        const double needed = measure_bucket(b, h);
+        if (needed <= h) break;
+        h = attempt < 4 ? needed : 2.0 * h;
       }
+      halo_ = h;
       if (progress) progress(static_cast<double>(b + 1) / static_cast<double>(buckets_.size()));
     }
   }
@@ -357,8 +363,10 @@ class NearestStream {
 
  private:
   // Loads bucket b and every point within h of it, measures, and writes bucket b's distances if every one
-  // is certainly the nearest (closer than the loaded region's edge); false: widen the halo.
-  bool measure_bucket(int b, double h) {
+  // is certainly the nearest (closer than the loaded region's edge). Returns the halo that holds every
+  // distance found (at most h when they were written): a point's true neighbour is no farther than the
+  // one found.
+  double measure_bucket(int b, double h) {
     const double lo = edge(b) - h, hi = edge(b + 1) + h;
     const bool all_below = lo <= zmin_, all_above = hi > zmax_;
     PointSet set{n_, {}, domain_};
@@ -398,18 +406,21 @@ class NearestStream {
       if (c != b) load(c, false);
     if (set.size() < 2) {
       if (all_below && all_above) throw std::invalid_argument("the statistics need at least 2 points");
-      return false;
+      return 2.0 * h;
     }
     const std::vector<double> d = nearest_neighbour_distances(set, config_.knn, config_.threads);
     // The margins carry a relative slack far above the rounding of an edge and a difference.
     constexpr double kSlack = 1e-9;
     const double width = hi - lo;
+    double needed = h;
     for (std::uint64_t q = 0; q < queries; ++q) {
       const double z = set.point(q)[n_ - 1];
       const double margin = std::min(all_below ? std::numeric_limits<double>::infinity() : z - lo,
                                      all_above ? std::numeric_limits<double>::infinity() : hi - z);
-      if (!(d[q] <= margin - kSlack * width)) return false;
+      if (!(d[q] <= margin - kSlack * width))  // the halo that would hold this point's neighbour, with room
+        needed = std::max(needed, (h + d[q] - margin) * (1.0 + 1e-6) + 2.0 * kSlack * width);
     }
+    if (needed > h) return needed;
     std::vector<std::pair<std::uint64_t, double>> pairs(queries);
     for (std::uint64_t q = 0; q < queries; ++q) pairs[q] = {index[q], d[q]};
     std::sort(pairs.begin(), pairs.end());
@@ -420,7 +431,7 @@ class NearestStream {
     }
     pairs_[static_cast<std::size_t>(b)]->write(out.data(), out.size() * sizeof(double));
     measured_[static_cast<std::size_t>(b)] = queries;
-    return true;
+    return h;
   }
 
   const SampleConfig& config_;
@@ -432,6 +443,7 @@ class NearestStream {
   std::vector<std::uint64_t> measured_;
   SortedRuns runs_;
   std::uint64_t total_ = 0;
+  double halo_ = 0.0;  // the last bucket's halo
   double zmin_ = std::numeric_limits<double>::infinity(), zmax_ = -std::numeric_limits<double>::infinity();
 };
 
