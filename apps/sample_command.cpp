@@ -212,7 +212,7 @@ struct SampleCommand : Subcommand {
                   "--on, --periodic, --rdf or --sets > 1");
     cmd->add_option("--slabs", config.stream_slabs,
                     "Slabs of --stream: a divisor of K for the lattice methods; 0 = the fewest whose slabs hold at most\n"
-                    "2^22 points")
+                    "2^22 points and fit --max-memory")
         ->capture_default_str()
         ->check(CLI::Range(0, 1 << 30));
     cmd->add_option("-m,--sets,--realizations", realizations,
@@ -367,8 +367,15 @@ struct SampleCommand : Subcommand {
         throw std::invalid_argument(fmt::format("--stream makes one realization; drop --sets {}", realizations));
       return;
     }
-    const double need = dfvn::estimated_peak_bytes(config), limit = dfvn::memory_limit_bytes(config);
-    if (need <= limit) return;
+    double need = 0.0, limit = 0.0;
+    try {  // a size no lattice holds: validate() says so in its own words
+      need = dfvn::estimated_peak_bytes(config);
+      limit = dfvn::memory_limit_bytes(config);
+      // Only when the slabs fit: otherwise validate() gives the in-memory refusal, which names -n or --grid.
+      if (need <= limit || dfvn::streamed_peak_bytes(config, dfvn::stream_slab_count(config, 0)) > limit) return;
+    } catch (const std::invalid_argument&) {
+      return;
+    }
     config.stream = true;
     std::fprintf(stderr, "%s: note: the point sets need about %s of memory (limit %s): streaming them in slabs (--stream)\n",
                  kProgram, dfvn::byte_size(need).c_str(), dfvn::byte_size(limit).c_str());

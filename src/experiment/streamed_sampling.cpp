@@ -558,11 +558,12 @@ MethodResult run_streamed_method(const SampleConfig& config, const MethodPlan& p
   }
   if (displacement) result.displacement = displacement->finish();
   result.seconds_generate = stopwatch.seconds();
-  if (writer) writer->commit();
-  if (!nearest) return result;
-  if (accepted < 2)
+  // As in memory: a set too small to measure is an error before its point file is written.
+  if (nearest && accepted < 2)
     throw std::invalid_argument(fmt::format("the {} point set has {} point(s) ({}); the statistics need at least 2", name,
                                             accepted, facts.dropped ? fmt::format("{} dropped", *facts.dropped) : result.notes));
+  if (writer) writer->commit();
+  if (!nearest) return result;
   const std::string stage = name + " statistics";
   if (progress) progress(stage, 0.0);
   stopwatch.restart();

@@ -107,6 +107,10 @@ if [[ -w $work/ro ]]; then ok; else  # root writes anywhere: nothing to check
   expect_error "unwritable stats" "" "" sample --dim 3 --grid 6 --methods cnj --stream -o "$work/ro/s.csv"
   [[ ! -e $work/s.csv && -z $(ls -A "$work/ro") ]] && ok || bad "an unwritable run left a file"
 fi
+# A set too small to measure: the error comes before its point file is written, as in memory.
+expect_error "all dropped" "" "statistics need at least 2" sample --dim 2 --grid 4 --methods cnj --domain-mode drop \
+  --step-scale 1000 --stream --points "$work/dropped" -o "$work/dropped.csv"
+[[ ! -e $work/dropped/cnj.csv && ! -e $work/dropped.csv ]] && ok || bad "all dropped: a file was left"
 # Drop mode's npy count is written last: standard output cannot take it, and nothing is written.
 expect_error "drop npy to stdout" "" "needs a regular file" \
   sample --dim 2 --grid 10 --methods cnj --domain-mode drop --stream --points - --format npy --no-stats
