@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "dfvn/experiment/experiment.hpp"
 #include "dfvn/experiment/json_report.hpp"
 #include "dfvn/experiment/realizations.hpp"
+#include "dfvn/experiment/streamed_sampling.hpp"
 #include "dfvn/io/atomic_file.hpp"
 #include "dfvn/io/point_file.hpp"
 #include "dfvn/sampling/method.hpp"
@@ -54,6 +56,7 @@ struct SampleCommand : Subcommand {
   int realizations = 1;
   bool no_stats = false;
   bool no_timing = false;
+  bool stream = false;
   CLI::Option* stats_option = nullptr;
   CLI::Option* format_option = nullptr;
   TransformOptions transform;
@@ -202,6 +205,18 @@ struct SampleCommand : Subcommand {
     cmd->add_option("--max-memory", config.max_memory_gib, "Memory limit in GiB for the point sets; 0 = 80% of the machine's")
         ->capture_default_str()
         ->check(kNonNegativeFinite);
+    cmd->add_flag("--stream", stream,
+                  "Make and measure the sets in slabs (cnj, jitter, random, sobol): the lattice cut along its last\n"
+                  "axis (the slowest in the point order) into --slabs slabs, each generated, appended to --points\n"
+                  "and measured with a halo from its neighbours; memory O(slab + halo), temporaries in $TMPDIR; the\n"
+                  "same bytes and statistics as in memory. Chosen by itself (with a note) when the sets would exceed\n"
+                  "--max-memory and the run can stream. Not with pds, jitter-matched, halton, lhs, --domain ball,\n"
+                  "--on, --periodic, --rdf or --sets > 1");
+    cmd->add_option("--slabs", config.stream_slabs,
+                    "Slabs of --stream: a divisor of K for the lattice methods; 0 = the fewest whose slabs hold at most\n"
+                    "2^22 points and fit --max-memory")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1 << 30));
     cmd->add_option("-m,--sets,--realizations", realizations,
                     "Realizations R: independently seeded repeats, seeds s..s+R-1 (-m/--sets M as in UTK); adds per\n"
                     "method the mean and sd of every real statistic (rows stat = mean, sd); --points writes a\n"
@@ -270,6 +285,7 @@ struct SampleCommand : Subcommand {
                                       config.on == dfvn::Surface::none && config.cnj.domain == dfvn::CnjDomain::torus);
     config.compute_statistics = !no_stats;
     config.compute_rdf = !rdf_path.empty();
+    choose_streaming();
     config.validate();
     dfvn::check_seed_range(common.seed, static_cast<std::uint64_t>(realizations), "--seed", "--realizations");
     check_output_options();
@@ -288,6 +304,7 @@ struct SampleCommand : Subcommand {
     for (const std::string& warning : dfvn::sampling_warnings(config)) std::fprintf(stderr, "%s: warning: %s\n", kProgram, warning.c_str());
 
     const dfvn::PointFormat point_format = dfvn::parse_point_format(format);
+    if (config.stream) return run_streamed(point_format);
     std::vector<double> stage_weights;  // every realization runs the same stages
     for (int r = 0; r < realizations; ++r)
       for (double w : dfvn::sampling_stage_weights(config)) stage_weights.push_back(w);
@@ -344,6 +361,44 @@ struct SampleCommand : Subcommand {
     if (!no_stats) dfvn::write_file_atomically(stats_path, stats);
   }
 
+  // --stream when asked, or when the in-memory sets would exceed the memory limit and the run can stream.
+  void choose_streaming() {
+    if (!stream && config.stream_slabs > 0) throw std::invalid_argument("--slabs applies to --stream, which is not given");
+    if (stream || realizations > 1 || !dfvn::stream_refusal(config).empty()) {
+      config.stream = stream;
+      if (stream && realizations > 1)
+        throw std::invalid_argument(fmt::format("--stream makes one realization; drop --sets {}", realizations));
+      return;
+    }
+    double need = 0.0, limit = 0.0;
+    try {  // a size no lattice holds: validate() says so in its own words
+      need = dfvn::estimated_peak_bytes(config);
+      limit = dfvn::memory_limit_bytes(config);
+      // Only when the slabs fit: otherwise validate() gives the in-memory refusal, which names -n or --grid.
+      if (need <= limit || dfvn::streamed_peak_bytes(config, dfvn::stream_slab_count(config, 0)) > limit) return;
+    } catch (const std::invalid_argument&) {
+      return;
+    }
+    config.stream = true;
+    std::fprintf(stderr, "%s: note: the point sets need about %s of memory (limit %s): streaming them in slabs (--stream)\n",
+                 kProgram, dfvn::byte_size(need).c_str(), dfvn::byte_size(limit).c_str());
+  }
+
+  void run_streamed(dfvn::PointFormat point_format) {
+    std::vector<double> stage_weights;
+    for (double w : dfvn::sampling_stage_weights(config)) stage_weights.push_back(w);
+    dfvn::ProgressReporter* reporter = progress.make(std::move(stage_weights));
+    std::function<std::string(dfvn::Method)> path;
+    if (!points_dir.empty()) path = [this](dfvn::Method m) { return point_file(m); };
+    const auto results = dfvn::run_streamed_sampling(config, config.stream_slabs, path, point_format, reporter->callback());
+    reporter->complete();
+    std::string stats = dfvn::stats_csv_header();
+    for (const auto& r : results) stats += dfvn::stats_csv_row(config, r, !no_timing);
+    if (!json_path.empty())
+      dfvn::write_file_atomically(json_path, dfvn::sampling_json(config, {{config.seed, results}}, !no_timing));
+    if (!no_stats) dfvn::write_file_atomically(stats_path, stats);
+  }
+
   // Options that only make sense together (the outputs themselves: dfvn::check_outputs).
   void check_output_options() const {
     if (format_option->count() > 0 && points_dir.empty())
@@ -357,6 +412,11 @@ struct SampleCommand : Subcommand {
       throw std::invalid_argument("-o/--output is the statistics CSV, not a point file (" +
                                   dfvn::quote_for_message(stats_path, dfvn::kMaxPathEchoChars) +
                                   "); write point sets with --points");
+    if (config.stream && points_dir == "-" && config.cnj.domain_mode == dfvn::DomainMode::drop &&
+        (format == "npy" || format == "bin") &&
+        std::find(config.methods.begin(), config.methods.end(), dfvn::Method::cnj) != config.methods.end())
+      throw std::invalid_argument("--stream --points - --format " + format + ": drop mode's point count is known only at "
+                                  "the end and goes first in the file, which needs a regular file (or --format dat, csv)");
     if (realizations > 1 && !rdf_path.empty())
       throw std::invalid_argument("--rdf takes one realization; drop it or --sets");
     if (realizations > 1 && !points_dir.empty() && format == "csv")

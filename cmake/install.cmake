@@ -43,6 +43,7 @@ set(DFVN_PUBLIC_HEADERS
     core/tree_sum.hpp
     experiment/experiment.hpp
     experiment/realizations.hpp
+    experiment/streamed_sampling.hpp
     field/constraint.hpp
     field/cross_product.hpp
     field/dfvn_field.hpp

@@ -21,6 +21,7 @@
 
 #include "dfvn/experiment/experiment.hpp"
 #include "dfvn/experiment/realizations.hpp"
+#include "dfvn/experiment/streamed_sampling.hpp"
 
 #include "dfvn/field/constraint.hpp"
 #include "dfvn/field/cross_product.hpp"

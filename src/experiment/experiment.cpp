@@ -13,6 +13,7 @@
 #include "dfvn/core/message_text.hpp"
 #include "dfvn/core/parallel.hpp"
 #include "dfvn/core/stopwatch.hpp"
+#include "dfvn/experiment/streamed_sampling.hpp"
 #include "dfvn/io/csv.hpp"
 #include "dfvn/noise/noise_domain.hpp"
 #include "dfvn/sampling/halton.hpp"
@@ -160,6 +161,10 @@ double estimated_peak_bytes(const SampleConfig& config) {
   return peak;
 }
 
+double memory_limit_bytes(const SampleConfig& config) {
+  return config.max_memory_gib > 0.0 ? config.max_memory_gib * double(1ULL << 30) : 0.8 * physical_memory_bytes();
+}
+
 void SampleConfig::validate() const {
   if (dimension < kMinDimension || dimension > kMaxDimension)
     throw std::invalid_argument(fmt::format("--dim must be in {}..{}, got {}", kMinDimension, kMaxDimension, dimension));
@@ -229,7 +234,16 @@ void SampleConfig::validate() const {
   }
   // An absurd --max-memory makes the limit Inf: then nothing is refused here, and an allocation that
   // fails is reported by run_sampling.
-  const double limit = max_memory_gib > 0.0 ? max_memory_gib * double(1ULL << 30) : 0.8 * physical_memory_bytes();
+  const double limit = memory_limit_bytes(*this);
+  if (stream) {
+    if (const std::string why = stream_refusal(*this); !why.empty()) throw std::invalid_argument(why);
+    const double need = streamed_peak_bytes(*this, stream_slab_count(*this, stream_slabs));
+    if (need > limit)
+      throw std::invalid_argument(fmt::format("--stream: a slab with its halo needs about {} of memory (limit {}); raise "
+                                              "--slabs or --max-memory GIB",
+                                              byte_size(need), byte_size(limit)));
+    return;
+  }
   const double need = estimated_peak_bytes(*this);
   if (need > limit) {
     // Name the option the user gave: with -n the lattice's K was derived from the count.

@@ -42,6 +42,10 @@ struct SampleConfig {
   // box (stats/periodic_neighbours.hpp), for every method; off: the Euclidean distances of the box.
   bool periodic_statistics = false;
   double max_memory_gib = 0.0;  // 0: 80% of the machine's memory
+  // Made in slabs (experiment/streamed_sampling.hpp): validate() checks the streamed run's memory and
+  // what it refuses instead of the in-memory sets'. stream_slabs: the slab count, 0 = automatic.
+  bool stream = false;
+  int stream_slabs = 0;
   // 0: every method takes the lattice's count (Sobol under the paper protocol: 2^round(log2 K^N)).
   // Otherwise the methods without a lattice (pds, sobol, random, halton, lhs) are asked for exactly
   // this many points, and `grid` should be grid_for_count(dimension, count) (sampling/lattice.hpp).
@@ -80,6 +84,8 @@ MethodPlan plan_method(const SampleConfig& config, Method method);
 
 // Bytes the largest point set and its statistics need at the peak (about).
 double estimated_peak_bytes(const SampleConfig& config);
+// The memory limit of --max-memory: max_memory_gib, or 80% of the machine's memory when it is 0.
+double memory_limit_bytes(const SampleConfig& config);
 
 // Facts of how a set was made, each in the unit of the option it comes from; empty where the method
 // has no such thing.

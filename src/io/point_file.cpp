@@ -3,6 +3,8 @@
 #include "dfvn/core/message_text.hpp"
 
 #include <bit>
+#include <limits>
+#include <sstream>
 #include <cstdint>
 #include <string>
 
@@ -90,6 +92,67 @@ void write_point_file(const std::string& path, const PointSet& points, PointForm
     case PointFormat::bin: write_utk_bin(out.stream(), points); break;
   }
   out.commit();
+}
+
+PointFileWriter::PointFileWriter(const std::string& path, PointFormat format, int dimension, std::uint64_t count,
+                                 bool count_known)
+    : out_(path), format_(format), dimension_(dimension), count_(count_known ? count : 0), count_known_(count_known) {
+  if (format_ == PointFormat::bin && count > std::numeric_limits<std::uint32_t>::max())
+    throw std::invalid_argument(fmt::format("UTK's .bin holds at most 2^32 - 1 points a set; this set has {}", count));
+  const std::string h = header(count_);
+  out_.stream().write(h.data(), static_cast<std::streamsize>(h.size()));
+}
+
+std::string PointFileWriter::header(std::uint64_t count) const {
+  switch (format_) {
+    case PointFormat::csv: return numbered_header("x", dimension_) + '\n';
+    case PointFormat::npy: {
+      std::ostringstream text;
+      write_npy_header(text, fmt::format("{}, {}", count, dimension_));
+      return text.str();
+    }
+    case PointFormat::bin: {
+      const auto n = static_cast<std::uint32_t>(count);
+      return std::string(reinterpret_cast<const char*>(&n), 4);
+    }
+    case PointFormat::dat: return {};
+  }
+  return {};
+}
+
+void PointFileWriter::append(const double* coordinates, std::uint64_t rows) {
+  if (format_ == PointFormat::bin && rows_ + rows > std::numeric_limits<std::uint32_t>::max())
+    throw std::invalid_argument("UTK's .bin holds at most 2^32 - 1 points a set");
+  const PointSet block{dimension_, Coordinates(coordinates, coordinates + rows * static_cast<std::uint64_t>(dimension_)),
+                       Box{}};
+  switch (format_) {
+    case PointFormat::csv: write_points_text(out_.stream(), block, std::string(), ','); break;
+    case PointFormat::dat: write_points_text(out_.stream(), block, std::string(), ' '); break;
+    case PointFormat::npy:
+    case PointFormat::bin:
+      out_.stream().write(reinterpret_cast<const char*>(coordinates),
+                          static_cast<std::streamsize>(rows * static_cast<std::uint64_t>(dimension_) * sizeof(double)));
+      break;
+  }
+  rows_ += rows;
+}
+
+void PointFileWriter::commit() {
+  if (count_known_ && rows_ != count_)
+    throw std::logic_error(fmt::format("a streamed point file promised {} rows and got {}", count_, rows_));
+  if (!count_known_ && (format_ == PointFormat::npy || format_ == PointFormat::bin)) {
+    const std::string placeholder = header(0), final_header = header(rows_);
+    if (placeholder.size() != final_header.size()) throw std::logic_error("the npy header changed its length");
+    std::ostream& stream = out_.stream();
+    stream.flush();
+    stream.seekp(0);
+    if (!stream) throw std::runtime_error(fmt::format("{}: cannot go back to write the point count (a streamed {} file "
+                                                      "whose count is known only at the end needs a regular file)",
+                                                      out_.path(), format_ == PointFormat::npy ? "npy" : "bin"));
+    stream.write(final_header.data(), static_cast<std::streamsize>(final_header.size()));
+    stream.seekp(0, std::ios::end);
+  }
+  out_.commit();
 }
 
 void check_point_sets_fit(const std::vector<PointSet>& sets, PointFormat format) {

@@ -7,12 +7,14 @@
 // csv holds one set.
 #pragma once
 
+#include <cstdint>
 #include <ostream>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "dfvn/core/point_set.hpp"
+#include "dfvn/io/atomic_file.hpp"
 
 namespace dfvn {
 
@@ -31,6 +33,28 @@ void write_point_file(const std::string& path, const PointSet& points, PointForm
 
 // Throws std::invalid_argument, naming the format and the reason, unless one file of `format` can hold
 // these sets: csv holds one set, npy sets of one size (an array (M, points, N)); all of one dimension.
+// One point set written a block of rows at a time, with the bytes write_point_file gives for the whole
+// set (a streamed run's slabs, experiment/streamed_sampling.hpp). npy's shape and bin's count come first:
+// give `count` when it is known; otherwise (count_known false) a placeholder is written and commit()
+// writes the final count over it, which needs a file (not standard output or a device). Whole or not at
+// all, as AtomicOutput.
+class PointFileWriter {
+ public:
+  PointFileWriter(const std::string& path, PointFormat format, int dimension, std::uint64_t count, bool count_known);
+  void append(const double* coordinates, std::uint64_t rows);
+  void commit();  // throws std::runtime_error if the count cannot be written back
+  std::uint64_t rows() const { return rows_; }
+
+ private:
+  std::string header(std::uint64_t count) const;
+  AtomicOutput out_;
+  PointFormat format_;
+  int dimension_;
+  std::uint64_t count_;
+  bool count_known_;
+  std::uint64_t rows_ = 0;
+};
+
 void check_point_sets_fit(const std::vector<PointSet>& sets, PointFormat format);
 // The sets in one stream or file (whole or not at all), in the layouts above; one set is written as
 // write_point_file writes it (npy (points, N), dat without a '#' line).

@@ -145,19 +145,19 @@ std::uint64_t cnj_start_count(const LatticeSpec& lattice, CnjDomain domain) {
   return inside;
 }
 
+namespace {
+
+// CNJ of the start sites `sites` (rows of the lattice CNJ starts from, in its order): every point's trace
+// depends only on its site, the options and the seed, so a slab of sites gives the whole run's rows.
 template <int N>
-CnjResult curl_noise_jitter(const LatticeSpec& requested_lattice, const CnjOptions& options, std::uint64_t seed,
-                            int threads, const FractionProgress& progress) {
-  options.validate();
-  if (requested_lattice.dimension != N) throw std::invalid_argument("lattice dimension does not match");
-  const LatticeSpec lattice = cnj_lattice(requested_lattice, options.domain);
+CnjResult curl_noise_jitter_sites(const LatticeSpec& lattice, const CnjOptions& options, std::uint64_t seed,
+                                  const std::vector<double>& sites, int threads, const FractionProgress& progress) {
   const bool torus = options.domain == CnjDomain::torus;
   CnjResult result;
   result.trace_time = options.step_scale * average_neighbour_distance(N) * lattice.spacing();
   const DfvnField<N> field(seed, cnj_field_options(options, lattice.spacing()));
   result.field_frequency = field.frequency();
   const Box domain{0.0, 1.0, options.domain == CnjDomain::ball};
-  const std::vector<double> sites = cnj_start_sites(lattice, options.domain);
   const auto count = static_cast<std::int64_t>(sites.size() / N);
   result.started = static_cast<std::uint64_t>(count);
 
@@ -190,10 +190,35 @@ CnjResult curl_noise_jitter(const LatticeSpec& requested_lattice, const CnjOptio
   return result;
 }
 
+}  // namespace
+
+template <int N>
+CnjResult curl_noise_jitter(const LatticeSpec& requested_lattice, const CnjOptions& options, std::uint64_t seed,
+                            int threads, const FractionProgress& progress) {
+  options.validate();
+  if (requested_lattice.dimension != N) throw std::invalid_argument("lattice dimension does not match");
+  const LatticeSpec lattice = cnj_lattice(requested_lattice, options.domain);
+  return curl_noise_jitter_sites<N>(lattice, options, seed, cnj_start_sites(lattice, options.domain), threads, progress);
+}
+
 CnjResult curl_noise_jitter(const LatticeSpec& lattice, const CnjOptions& options, std::uint64_t seed, int threads,
                             const FractionProgress& progress) {
   return dispatch_dimension(lattice.dimension, [&]<int N>() {
     return curl_noise_jitter<N>(lattice, options, seed, threads, progress);
+  });
+}
+
+CnjResult curl_noise_jitter_range(const LatticeSpec& requested_lattice, const CnjOptions& options, std::uint64_t seed,
+                                  std::uint64_t first, std::uint64_t count, int threads) {
+  options.validate();
+  if (options.domain == CnjDomain::ball)
+    throw std::invalid_argument("CNJ in the ball starts from the clipped lattice, whose rows are not lattice indices");
+  const LatticeSpec lattice = cnj_lattice(requested_lattice, options.domain);
+  const int n = lattice.dimension;
+  std::vector<double> sites(static_cast<std::size_t>(count) * n);
+  for (std::uint64_t r = 0; r < count; ++r) lattice.point(first + r, sites.data() + r * n);
+  return dispatch_dimension(n, [&]<int N>() {
+    return curl_noise_jitter_sites<N>(lattice, options, seed, sites, threads, {});
   });
 }
 

@@ -128,4 +128,10 @@ CnjResult curl_noise_jitter(const LatticeSpec& lattice, const CnjOptions& option
 CnjResult curl_noise_jitter(const LatticeSpec& lattice, const CnjOptions& options, std::uint64_t seed, int threads,
                             const FractionProgress& progress = {});
 
+// The rows first .. first + count - 1 of that run (lattice indices, torus or cube; not the ball's clipped
+// lattice): every trace depends only on its site, the options and the seed, so the points, displacements
+// and counts are the whole run's for those sites (a streamed run's slab, experiment/streamed_sampling.hpp).
+CnjResult curl_noise_jitter_range(const LatticeSpec& lattice, const CnjOptions& options, std::uint64_t seed,
+                                  std::uint64_t first, std::uint64_t count, int threads);
+
 }  // namespace dfvn

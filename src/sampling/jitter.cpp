@@ -15,16 +15,22 @@ PointSet jittered_lattice(const LatticeSpec& lattice, std::uint64_t seed, int th
 }
 
 PointSet jittered_lattice(const LatticeSpec& lattice, double half_width, std::uint64_t seed, int threads) {
+  return jittered_lattice_range(lattice, half_width, 0, lattice.point_count(), seed, threads);
+}
+
+PointSet jittered_lattice_range(const LatticeSpec& lattice, double half_width, std::uint64_t first, std::uint64_t count,
+                                std::uint64_t seed, int threads) {
   const int n = lattice.dimension;
-  const auto count = static_cast<std::int64_t>(lattice.point_count());
+  const auto rows = static_cast<std::int64_t>(count);
   const double h = half_width;
   PointSet out{n, Coordinates(static_cast<std::size_t>(count) * n), Box{0.0, 1.0}};
 #pragma omp parallel for schedule(static) num_threads(resolve_threads(threads)) if (worth_threads(out.coordinates.size()))
-  for (std::int64_t i = 0; i < count; ++i) {
-    double* x = out.coordinates.data() + i * n;
-    lattice.point(static_cast<std::uint64_t>(i), x);
+  for (std::int64_t r = 0; r < rows; ++r) {
+    const std::uint64_t i = first + static_cast<std::uint64_t>(r);
+    double* x = out.coordinates.data() + r * n;
+    lattice.point(i, x);
     for (int j = 0; j < n; ++j)
-      x[j] += h * (2.0 * random_unit(seed, Stream::jitter, static_cast<std::uint64_t>(i), static_cast<std::uint64_t>(j)) - 1.0);
+      x[j] += h * (2.0 * random_unit(seed, Stream::jitter, i, static_cast<std::uint64_t>(j)) - 1.0);
   }
   return out;
 }
@@ -110,12 +116,17 @@ MatchedJitter jitter_matching_rms(const LatticeSpec& lattice, double rms, Jitter
 }
 
 PointSet uniform_random_points(int dimension, std::uint64_t count, const Box& domain, std::uint64_t seed, int threads) {
+  return uniform_random_points_range(dimension, 0, count, domain, seed, threads);
+}
+
+PointSet uniform_random_points_range(int dimension, std::uint64_t first, std::uint64_t count, const Box& domain,
+                                     std::uint64_t seed, int threads) {
   PointSet out{dimension, Coordinates(count * static_cast<std::uint64_t>(dimension)), domain};
 #pragma omp parallel for schedule(static) num_threads(resolve_threads(threads)) if (worth_threads(out.coordinates.size()))
-  for (std::int64_t i = 0; i < static_cast<std::int64_t>(count); ++i)
+  for (std::int64_t r = 0; r < static_cast<std::int64_t>(count); ++r)
     for (int j = 0; j < dimension; ++j)
-      out.coordinates[static_cast<std::size_t>(i) * dimension + j] =
-          domain.lo + domain.side * random_unit(seed, Stream::random_points, static_cast<std::uint64_t>(i),
+      out.coordinates[static_cast<std::size_t>(r) * dimension + j] =
+          domain.lo + domain.side * random_unit(seed, Stream::random_points, first + static_cast<std::uint64_t>(r),
                                                 static_cast<std::uint64_t>(j));
   return out;
 }

@@ -38,5 +38,11 @@ MatchedJitter jitter_matching_rms(const LatticeSpec& lattice, double rms, Jitter
 
 // `count` points uniform in `domain`.
 PointSet uniform_random_points(int dimension, std::uint64_t count, const Box& domain, std::uint64_t seed, int threads);
+// Points first .. first + count - 1 of those sets (the same bits as the whole set's rows): the slabs of
+// a streamed run (experiment/streamed_sampling.hpp).
+PointSet jittered_lattice_range(const LatticeSpec& lattice, double half_width, std::uint64_t first, std::uint64_t count,
+                                std::uint64_t seed, int threads);
+PointSet uniform_random_points_range(int dimension, std::uint64_t first, std::uint64_t count, const Box& domain,
+                                     std::uint64_t seed, int threads);
 
 }  // namespace dfvn

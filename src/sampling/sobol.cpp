@@ -119,7 +119,8 @@ struct SobolBlocks {
   std::vector<std::uint32_t> keys;  // Owen: one key per dimension, lane 0 of (seed, stream, dimension)
   std::uint64_t stream = 0;         // Owen: stream_key(seed, sobol_scramble)
   double lo = 0.0, side = 1.0;
-  double* out = nullptr;
+  double* out = nullptr;   // point `first`'s row
+  std::uint64_t first = 0;
 };
 
 // A GCC/Clang vector of `bytes` bytes of T (the attribute cannot be written on a dependent alias).
@@ -157,7 +158,7 @@ template <std::size_t D, std::size_t W, Scramble S>
   }
   constexpr std::uint64_t kOneBits = 0x3ff0000000000000;  // the bits of 1.0
   for (std::uint64_t i = begin; i < end; ++i) {
-    double* x = b.out + i * D;
+    double* x = b.out + (i - b.first) * D;
     if constexpr (S == Scramble::owen) {
       // 20 random bits below the 32 digits per coordinate: coordinate j takes bits 20 (j % 3) up of
       // random_bits(seed, stream, point, 1 + j / 3), so they depend on the point and the coordinate
@@ -246,12 +247,12 @@ template <std::size_t D>
     for (std::size_t p = 0; p < kBatch; ++p)
       for (std::size_t j = 0; j < D; ++j)
         low[p * D + j] = static_cast<std::uint32_t>(words[p * kBelowWords + j / 3] >> (20 * (j % 3))) << 12;
-    double* x = b.out + i * D;
+    double* x = b.out + (i - b.first) * D;
     for (std::size_t k = 0; k < kLanes; ++k) x[k] = to_double(high[k], low[k]);
   }
   for (; i < end; ++i) {
     const std::uint64_t point_key = hash_combine(b.stream, i);
-    double* x = b.out + i * D;
+    double* x = b.out + (i - b.first) * D;
     for (std::size_t j = 0; j < D; ++j) {
       const std::uint64_t word = hash_combine(point_key, 1 + j / 3);
       x[j] = to_double(owen_scramble_reversed(current[j], b.keys[j]), static_cast<std::uint32_t>(word >> (20 * (j % 3))) << 12);
@@ -321,7 +322,13 @@ std::uint32_t owen_scramble(std::uint32_t digits, std::uint64_t seed, int dim) {
 
 PointSet sobol_points(int dimension, std::uint64_t count, const Box& domain, Scramble scramble, std::uint64_t seed,
                       int threads, Simd simd) {
-  if (count > (std::uint64_t{1} << 32)) throw std::invalid_argument("at most 2^32 Sobol points");
+  return sobol_points_range(dimension, 0, count, domain, scramble, seed, threads, simd);
+}
+
+PointSet sobol_points_range(int dimension, std::uint64_t first, std::uint64_t count, const Box& domain, Scramble scramble,
+                            std::uint64_t seed, int threads, Simd simd) {
+  if (first + count > (std::uint64_t{1} << 32) || first > (std::uint64_t{1} << 32))
+    throw std::invalid_argument("at most 2^32 Sobol points");
   const SobolSequence sequence(dimension);
   if (dimension > kMaxDimensions) throw std::logic_error("the Sobol direction table grew: raise kMaxDimensions");
   const auto dims = static_cast<std::size_t>(dimension);
@@ -341,15 +348,19 @@ PointSet sobol_points(int dimension, std::uint64_t count, const Box& domain, Scr
   blocks.lo = domain.lo;
   blocks.side = domain.side;
   blocks.out = out.coordinates.data();
+  blocks.first = first;
   const FillBlock fill = choose_fill_block(dims, scramble, simd);
-  // Blocks of consecutive points are independent, so the points do not depend on the thread count.
+  // Blocks of consecutive points are independent, so the points do not depend on the thread count (and a
+  // range's blocks start at the whole set's block boundaries).
   constexpr std::uint64_t kBlock = 4096;
-  const auto block_count = static_cast<std::int64_t>((count + kBlock - 1) / kBlock);
+  const std::uint64_t end = first + count;
+  const std::uint64_t first_block = first / kBlock;
+  const auto block_count = static_cast<std::int64_t>((end + kBlock - 1) / kBlock - first_block);
   const bool parallel = worth_threads(count * dims);
 #pragma omp parallel for schedule(static) num_threads(resolve_threads(threads)) if (parallel)
   for (std::int64_t block = 0; block < block_count; ++block) {
-    const std::uint64_t begin = static_cast<std::uint64_t>(block) * kBlock;
-    fill(blocks, begin, std::min(count, begin + kBlock));
+    const std::uint64_t begin = (first_block + static_cast<std::uint64_t>(block)) * kBlock;
+    fill(blocks, std::max(first, begin), std::min(end, begin + kBlock));
   }
   return out;
 }

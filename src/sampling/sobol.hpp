@@ -46,5 +46,8 @@ std::uint32_t owen_scramble(std::uint32_t digits, std::uint64_t seed, int dim);
 // scramble runs on AVX2 where the CPU has it).
 PointSet sobol_points(int dimension, std::uint64_t count, const Box& domain, Scramble scramble, std::uint64_t seed,
                       int threads, Simd simd = Simd::best);
+// Points first .. first + count - 1 of that set, the same bits as its rows (a streamed run's slabs).
+PointSet sobol_points_range(int dimension, std::uint64_t first, std::uint64_t count, const Box& domain, Scramble scramble,
+                            std::uint64_t seed, int threads, Simd simd = Simd::best);
 
 }  // namespace dfvn

@@ -21,48 +21,57 @@ LatticeDisplacementSummary summarize_lattice_displacements(int dimension, int gr
   if (!include.empty() && include.size() != n) throw std::invalid_argument("lattice displacements: mask size");
   auto u = [&](std::size_t i) { return displacements.data() + i * dimension; };
 
-  LatticeDisplacementSummary s;
+  LatticeDisplacementSums sums;
+  sums.points = n;
   std::vector<double> lengths;
   lengths.reserve(n);
-  double sum2 = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!include.empty() && !include[i]) continue;
     double r2 = 0.0;
     for (int a = 0; a < dimension; ++a) r2 += u(i)[a] * u(i)[a];
-    sum2 += r2;
+    sums.sum2 += r2;
     lengths.push_back(std::sqrt(r2));
+    sums.unmoved += lengths.back() < 0.01 * spacing;
   }
-  if (!lengths.empty()) {
-    const std::size_t m = lengths.size();
-    s.rms = std::sqrt(sum2 / static_cast<double>(m));
-    s.fraction_unmoved = static_cast<double>(std::count_if(lengths.begin(), lengths.end(),
-                                                           [&](double r) { return r < 0.01 * spacing; })) /
-                         static_cast<double>(m);
-    std::sort(lengths.begin(), lengths.end());
-    s.median = median_of_sorted(lengths);
-  }
+  sums.included = lengths.size();
 
   // Neighbour pairs along each axis: i and i + stride_a while coordinate a of i is below K - 1.
-  double pair_sum2 = 0.0;
-  std::size_t pairs = 0;
+  sums.pair_sum2.assign(static_cast<std::size_t>(dimension), 0.0);
   std::size_t stride = 1;
   for (int a = 0; a < dimension; ++a) {
     for (std::size_t i = 0; i < n; ++i) {
       if ((i / stride) % static_cast<std::size_t>(grid) == static_cast<std::size_t>(grid - 1)) continue;
       const std::size_t j = i + stride;
-      for (int b = 0; b < dimension; ++b) pair_sum2 += (u(i)[b] - u(j)[b]) * (u(i)[b] - u(j)[b]);
-      ++pairs;
+      for (int b = 0; b < dimension; ++b) sums.pair_sum2[a] += (u(i)[b] - u(j)[b]) * (u(i)[b] - u(j)[b]);
+      ++sums.pairs;
     }
     stride *= static_cast<std::size_t>(grid);
   }
-  s.neighbour_disorder = pairs ? std::sqrt(pair_sum2 / static_cast<double>(pairs)) / spacing : 0.0;
-
-  double order = 0.0;
-  for (int a = 0; a < dimension; ++a) {
-    std::complex<double> mean = 0.0;
-    for (std::size_t i = 0; i < n; ++i) mean += std::polar(1.0, 2.0 * std::numbers::pi * u(i)[a] / spacing);
-    order += std::norm(mean / static_cast<double>(n));
+  sums.bragg.assign(static_cast<std::size_t>(dimension), 0.0);
+  for (int a = 0; a < dimension; ++a)
+    for (std::size_t i = 0; i < n; ++i) sums.bragg[a] += std::polar(1.0, 2.0 * std::numbers::pi * u(i)[a] / spacing);
+  double median = 0.0;
+  if (!lengths.empty()) {
+    std::sort(lengths.begin(), lengths.end());
+    median = median_of_sorted(lengths);
   }
+  return finish_lattice_displacements(dimension, spacing, sums, median);
+}
+
+LatticeDisplacementSummary finish_lattice_displacements(int dimension, double spacing, const LatticeDisplacementSums& sums,
+                                                        double median_length) {
+  LatticeDisplacementSummary s;
+  if (sums.included > 0) {
+    const auto m = static_cast<double>(sums.included);
+    s.rms = std::sqrt(sums.sum2 / m);
+    s.fraction_unmoved = static_cast<double>(sums.unmoved) / m;
+    s.median = median_length;
+  }
+  double pair_sum2 = 0.0;  // the axes' sums, in axis order
+  for (double axis_sum : sums.pair_sum2) pair_sum2 += axis_sum;
+  s.neighbour_disorder = sums.pairs ? std::sqrt(pair_sum2 / static_cast<double>(sums.pairs)) / spacing : 0.0;
+  double order = 0.0;
+  for (int a = 0; a < dimension; ++a) order += std::norm(sums.bragg[static_cast<std::size_t>(a)] / static_cast<double>(sums.points));
   s.lattice_order = order / dimension;
   return s;
 }

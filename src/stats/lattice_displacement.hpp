@@ -2,6 +2,7 @@
 // that tell coherent motion (a field that moves neighbours together) from disorder.
 #pragma once
 
+#include <complex>
 #include <cstdint>
 #include <vector>
 
@@ -28,5 +29,21 @@ struct LatticeDisplacementSummary {
 LatticeDisplacementSummary summarize_lattice_displacements(int dimension, int grid, double spacing,
                                                            const std::vector<double>& displacements,
                                                            const std::vector<unsigned char>& include = {});
+
+// The sums behind the summary, each a sum in index order (per axis for the neighbour pairs and the Bragg
+// amplitudes), so that a run made in slabs of whole layers (experiment/streamed_sampling.hpp) adds the same
+// terms in the same order; finish_lattice_displacements turns them and the median of the lengths into the
+// summary exactly as summarize_lattice_displacements does.
+struct LatticeDisplacementSums {
+  std::uint64_t points = 0;    // every row
+  std::uint64_t included = 0;  // rows counted in rms, median and fraction_unmoved
+  double sum2 = 0.0;           // sum of |u_i|^2 over the included rows
+  std::uint64_t unmoved = 0;   // included rows with |u_i| < 1% of the spacing
+  std::vector<double> pair_sum2;               // per axis: sum of |u_i - u_j|^2 over its neighbour pairs
+  std::uint64_t pairs = 0;                     // neighbour pairs over every axis
+  std::vector<std::complex<double>> bragg;     // per axis: sum of exp(2 pi i u_i[a] / spacing)
+};
+LatticeDisplacementSummary finish_lattice_displacements(int dimension, double spacing, const LatticeDisplacementSums& sums,
+                                                        double median_length);
 
 }  // namespace dfvn

@@ -103,16 +103,29 @@ NearestNeighbourSummary summarize_nearest_neighbours(std::vector<double> distanc
 NearestNeighbourSummary summarize_nearest_neighbours(std::vector<double> distances, double measure,
                                                      int manifold_dimension) {
   if (distances.empty()) throw std::invalid_argument("no distances to summarise");
-  NearestNeighbourSummary s;
-  s.points = distances.size();
   double sum = 0.0;  // in index order: the same for any thread count
   for (double d : distances) sum += d;
-  s.mean = sum / static_cast<double>(distances.size());
   std::sort(distances.begin(), distances.end());
-  const std::size_t n = distances.size();
-  s.min = distances.front();
-  s.median = median_of_sorted(distances);
-  s.q01 = quantile_of_sorted(distances, 0.01);
+  return summarize_nearest_neighbours(distances.size(), sum, [&](std::uint64_t k) { return distances[k]; }, measure,
+                                      manifold_dimension);
+}
+
+NearestNeighbourSummary summarize_nearest_neighbours(std::uint64_t count, double sum,
+                                                     const std::function<double(std::uint64_t)>& sorted_at,
+                                                     double measure, int manifold_dimension) {
+  if (count == 0) throw std::invalid_argument("no distances to summarise");
+  NearestNeighbourSummary s;
+  s.points = count;
+  s.mean = sum / static_cast<double>(count);
+  const std::uint64_t n = count;
+  s.min = sorted_at(0);
+  // median_of_sorted and quantile_of_sorted (core/quantile.hpp), on sorted_at.
+  s.median = n % 2 == 1 ? sorted_at(n / 2) : 0.5 * (sorted_at(n / 2 - 1) + sorted_at(n / 2));
+  const double rank = 0.01 * static_cast<double>(n - 1);
+  const auto below = static_cast<std::uint64_t>(rank);
+  const std::uint64_t above = std::min(below + 1, n - 1);
+  const double at_below = sorted_at(below);
+  s.q01 = at_below + (rank - static_cast<double>(below)) * (sorted_at(above) - at_below);
   const double density = static_cast<double>(n) / measure;
   s.median_scaled = s.median * std::pow(density, 1.0 / manifold_dimension);
   return s;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string_view>
 #include <vector>
 
@@ -45,5 +46,11 @@ NearestNeighbourSummary summarize_nearest_neighbours(std::vector<double> distanc
 // median is scaled by (points / measure)^(1 / manifold_dimension).
 NearestNeighbourSummary summarize_nearest_neighbours(std::vector<double> distances, double measure,
                                                      int manifold_dimension);
+// The same from the count, the sum of the distances in index order and the ascending order statistics
+// (sorted_at(k): the k-th smallest distance), for distances that are never all in memory at once
+// (experiment/streamed_sampling.hpp). The formulas are summarize_nearest_neighbours'.
+NearestNeighbourSummary summarize_nearest_neighbours(std::uint64_t count, double sum,
+                                                     const std::function<double(std::uint64_t)>& sorted_at,
+                                                     double measure, int manifold_dimension);
 
 }  // namespace dfvn

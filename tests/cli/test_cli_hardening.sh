@@ -205,7 +205,8 @@ expect_message "unterminated quote" "line 1, column 1: unterminated quote"
 # Messages: one clear line, the tool's own.
 expect_error "threads -1 range" "" "" --threads -1
 expect_message "threads -1 range" "1\.\.[0-9]+ \(4 x the [0-9]+ cores, at most 1024\), got '-1'"
-expect_error "memory units" "" "" --dim 3 --grid 40 --methods jitter --max-memory 0.001
+# (pds: a method that cannot stream; jitter past the limit now streams by itself, tests/cli/test_cli_stream.sh)
+expect_error "memory units" "" "" --dim 3 --grid 40 --methods pds --max-memory 0.001
 expect_message "memory units" "about [0-9.]+ MiB of memory \(limit 1\.02 MiB\)"
 if [[ ${DFVN_SANITIZED:-0} == 1 ]]; then
   echo "SKIP: allocation failure (AddressSanitizer aborts on an impossible allocation instead of throwing)"

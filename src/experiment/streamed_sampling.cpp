@@ -1,0 +1,649 @@
+#include "dfvn/experiment/streamed_sampling.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <cstring>
+#include <numbers>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include "dfvn/core/stopwatch.hpp"
+#include "dfvn/io/atomic_file.hpp"
+#include "dfvn/sampling/jitter.hpp"
+#include "dfvn/stats/distance_scale.hpp"
+
+namespace dfvn {
+
+namespace {
+
+bool is_lattice(Method m) { return m == Method::cnj || m == Method::jitter; }
+
+// A temporary file of fixed-size records, removed with its object (and on signals, by registration).
+class TemporaryFile {
+ public:
+  explicit TemporaryFile(std::string path)
+      : path_(std::move(path)), registration_(path_, TemporaryRegistration::Kind::file) {
+    file_.open(path_, std::ios::binary | std::ios::in | std::ios::out | std::ios::trunc);
+    if (!file_) throw std::runtime_error(fmt::format("cannot create the temporary file {}", path_));
+  }
+  ~TemporaryFile() {
+    file_.close();
+    std::error_code ignored;
+    std::filesystem::remove(path_, ignored);
+  }
+  std::fstream& stream() { return file_; }
+  void check() {
+    if (!file_) throw std::runtime_error(fmt::format("cannot write or read the temporary file {} (disk full?)", path_));
+  }
+  void write(const void* data, std::size_t bytes) {
+    file_.write(static_cast<const char*>(data), static_cast<std::streamsize>(bytes));
+    check();
+  }
+  void write_at(std::uint64_t offset, const void* data, std::size_t bytes) {
+    file_.seekp(static_cast<std::streamoff>(offset));
+    write(data, bytes);
+  }
+  void read_at(std::uint64_t offset, void* data, std::size_t bytes) {
+    file_.seekg(static_cast<std::streamoff>(offset));
+    file_.read(static_cast<char*>(data), static_cast<std::streamsize>(bytes));
+    check();
+  }
+  void rewind() {
+    file_.flush();
+    file_.clear();
+  }
+
+ private:
+  std::string path_;
+  TemporaryRegistration registration_;
+  std::fstream file_;
+};
+
+// The run's temporary directory in $TMPDIR.
+class TemporaryDirectory {
+ public:
+  TemporaryDirectory() {
+    static int serial = 0;
+    path_ = (std::filesystem::temp_directory_path() / fmt::format("dfvn-stream.{}.{}", ::getpid(), serial++)).string();
+    std::error_code error;
+    if (!std::filesystem::create_directory(path_, error))
+      throw std::runtime_error(fmt::format("cannot create the temporary directory {}", path_));
+    registration_ = std::make_unique<TemporaryRegistration>(path_, TemporaryRegistration::Kind::directory);
+  }
+  ~TemporaryDirectory() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  std::string file(const std::string& name) const { return (std::filesystem::path(path_) / name).string(); }
+
+ private:
+  std::string path_;
+  std::unique_ptr<TemporaryRegistration> registration_;
+};
+
+// Sorted runs of doubles (one per slab) in one file, and exact order statistics over them by a k-way
+// merge that reads each run a block at a time.
+class SortedRuns {
+ public:
+  explicit SortedRuns(const std::string& path) : file_(path) {}
+  void add(std::vector<double>& values) {
+    std::sort(values.begin(), values.end());
+    starts_.push_back(total_);
+    file_.write(values.data(), values.size() * sizeof(double));
+    total_ += values.size();
+  }
+  std::uint64_t size() const { return total_; }
+  // The values at ascending ranks `ranks` (each < size()).
+  std::vector<double> at_ranks(const std::vector<std::uint64_t>& ranks) {
+    file_.rewind();
+    constexpr std::uint64_t kBlock = 1 << 14;
+    struct Cursor {
+      std::uint64_t next, end;
+      std::vector<double> block;
+      std::size_t at = 0;
+    };
+    std::vector<Cursor> cursors;
+    for (std::size_t r = 0; r < starts_.size(); ++r) {
+      const std::uint64_t end = r + 1 < starts_.size() ? starts_[r + 1] : total_;
+      if (end > starts_[r]) cursors.push_back({starts_[r], end, {}, 0});
+    }
+    auto refill = [&](Cursor& c) {
+      const std::uint64_t n = std::min(kBlock, c.end - c.next);
+      c.block.resize(n);
+      if (n) file_.read_at(c.next * sizeof(double), c.block.data(), n * sizeof(double));
+      c.next += n;
+      c.at = 0;
+    };
+    for (Cursor& c : cursors) refill(c);
+    std::vector<double> out;
+    std::uint64_t rank = 0;
+    for (std::uint64_t wanted : ranks) {
+      for (;; ++rank) {
+        Cursor* best = nullptr;
+        for (Cursor& c : cursors)
+          if (c.at < c.block.size() && (!best || c.block[c.at] < best->block[best->at])) best = &c;
+        if (!best) throw std::logic_error("an order statistic past the values");
+        const double v = best->block[best->at++];
+        if (best->at == best->block.size() && best->next < best->end) refill(*best);
+        if (rank == wanted) {
+          out.push_back(v);
+          ++rank;
+          break;
+        }
+      }
+    }
+    return out;
+  }
+
+ private:
+  TemporaryFile file_;
+  std::vector<std::uint64_t> starts_;
+  std::uint64_t total_ = 0;
+};
+
+std::function<double(std::uint64_t)> order_statistics(SortedRuns& runs) {
+  // The ranks summarize_nearest_neighbours and median_of_sorted read, fetched once.
+  const std::uint64_t n = runs.size();
+  const double q_rank = 0.01 * static_cast<double>(n - 1);
+  const auto below = static_cast<std::uint64_t>(q_rank);
+  std::vector<std::uint64_t> ranks{0, below, std::min(below + 1, n - 1), n / 2};
+  if (n % 2 == 0) ranks.push_back(n / 2 - 1);
+  std::sort(ranks.begin(), ranks.end());
+  ranks.erase(std::unique(ranks.begin(), ranks.end()), ranks.end());
+  const std::vector<double> values = runs.at_ranks(ranks);
+  return [ranks, values](std::uint64_t k) {
+    const auto it = std::lower_bound(ranks.begin(), ranks.end(), k);
+    if (it == ranks.end() || *it != k) throw std::logic_error("an order statistic that was not fetched");
+    return values[static_cast<std::size_t>(it - ranks.begin())];
+  };
+}
+
+double median_of_runs(SortedRuns& runs) {
+  const std::uint64_t n = runs.size();
+  if (n == 0) return 0.0;
+  const std::function<double(std::uint64_t)> at = order_statistics(runs);
+  return n % 2 == 1 ? at(n / 2) : 0.5 * (at(n / 2 - 1) + at(n / 2));
+}
+
+std::uint64_t layer_size(const SampleConfig& config) {
+  std::uint64_t layer = 1;
+  for (int a = 0; a + 1 < config.dimension; ++a) layer *= static_cast<std::uint64_t>(config.grid);
+  return layer;
+}
+
+// One method's slabs: index ranges [first(s), first(s + 1)).
+struct Slabs {
+  std::uint64_t total = 0;
+  std::uint64_t rows = 0;  // per slab (the last may hold fewer)
+  int count = 0;
+  std::uint64_t first(int s) const { return std::min(total, rows * static_cast<std::uint64_t>(s)); }
+};
+
+Slabs slabs_of(const SampleConfig& config, const MethodPlan& plan, int count) {
+  Slabs s;
+  s.total = plan.requested;
+  s.count = count;
+  s.rows = is_lattice(plan.method) ? layer_size(config) * static_cast<std::uint64_t>(config.grid / count)
+                                   : (plan.requested + count - 1) / count;
+  return s;
+}
+
+// The displacement sums of a lattice method, fed slab by slab in index order.
+class DisplacementStream {
+ public:
+  DisplacementStream(const SampleConfig& config, double spacing, const std::string& runs_path)
+      : n_(config.dimension), grid_(config.grid), layer_(layer_size(config)), spacing_(spacing), lengths_(runs_path) {
+    sums_.pair_sum2.assign(static_cast<std::size_t>(n_), 0.0);
+    sums_.bragg.assign(static_cast<std::size_t>(n_), 0.0);
+  }
+  // u: rows x N for lattice rows first .. first + rows - 1 (whole layers).
+  void add(const std::vector<double>& u, std::uint64_t first) {
+    const std::uint64_t rows = u.size() / static_cast<std::size_t>(n_);
+    const auto at = [&](std::uint64_t r) { return u.data() + r * n_; };
+    std::vector<double> lengths;
+    lengths.reserve(rows);
+    for (std::uint64_t r = 0; r < rows; ++r) {
+      double r2 = 0.0;
+      for (int a = 0; a < n_; ++a) r2 += at(r)[a] * at(r)[a];
+      sums_.sum2 += r2;
+      lengths.push_back(std::sqrt(r2));
+      sums_.unmoved += lengths.back() < 0.01 * spacing_;
+    }
+    sums_.points += rows;
+    sums_.included += rows;
+    lengths_.add(lengths);
+    // Pairs along the axes within a layer: i and i + stride_a while coordinate a of i is below K - 1.
+    std::uint64_t stride = 1;
+    for (int a = 0; a + 1 < n_; ++a) {
+      double& sum = sums_.pair_sum2[static_cast<std::size_t>(a)];
+      for (std::uint64_t r = 0; r < rows; ++r) {
+        if (((first + r) / stride) % static_cast<std::uint64_t>(grid_) == static_cast<std::uint64_t>(grid_ - 1)) continue;
+        add_squared_difference(sum, at(r), at(r + stride));
+        ++sums_.pairs;
+      }
+      stride *= static_cast<std::uint64_t>(grid_);
+    }
+    // Along the last axis: the previous slab's last layer with this slab's first, then within the slab.
+    double& last = sums_.pair_sum2[static_cast<std::size_t>(n_ - 1)];
+    if (!previous_layer_.empty())
+      for (std::uint64_t r = 0; r < layer_; ++r) {
+        add_squared_difference(last, previous_layer_.data() + r * n_, at(r));
+        ++sums_.pairs;
+      }
+    for (std::uint64_t r = 0; r + layer_ < rows; ++r) {
+      add_squared_difference(last, at(r), at(r + layer_));
+      ++sums_.pairs;
+    }
+    previous_layer_.assign(u.end() - static_cast<std::ptrdiff_t>(layer_ * n_), u.end());
+    for (int a = 0; a < n_; ++a)
+      for (std::uint64_t r = 0; r < rows; ++r)
+        sums_.bragg[static_cast<std::size_t>(a)] += std::polar(1.0, 2.0 * std::numbers::pi * at(r)[a] / spacing_);
+  }
+  LatticeDisplacementSummary finish() { return finish_lattice_displacements(n_, spacing_, sums_, median_of_runs(lengths_)); }
+
+ private:
+  // Each coordinate's square added to the axis' sum, as summarize_lattice_displacements adds them.
+  void add_squared_difference(double& sum, const double* a, const double* b) const {
+    for (int k = 0; k < n_; ++k) sum += (a[k] - b[k]) * (a[k] - b[k]);
+  }
+  int n_, grid_;
+  std::uint64_t layer_;
+  double spacing_;
+  LatticeDisplacementSums sums_;
+  SortedRuns lengths_;
+  std::vector<double> previous_layer_;
+};
+
+// The points of a set spilled by their last coordinate into buckets, then measured bucket by bucket.
+class NearestStream {
+ public:
+  NearestStream(const SampleConfig& config, const TemporaryDirectory& dir, int buckets, const Box& domain)
+      : config_(config), n_(config.dimension), domain_(domain), runs_(dir.file("distance_runs")) {
+    for (int b = 0; b < buckets; ++b) {
+      buckets_.push_back(std::make_unique<TemporaryFile>(dir.file(fmt::format("bucket{}", b))));
+      pairs_.push_back(std::make_unique<TemporaryFile>(dir.file(fmt::format("distances{}", b))));
+    }
+    counts_.assign(static_cast<std::size_t>(buckets), 0);
+    measured_.assign(static_cast<std::size_t>(buckets), 0);
+  }
+  int bucket_of(double z) const {
+    const double f = (z - domain_.lo) / domain_.side * static_cast<double>(buckets_.size());
+    if (!(f >= 0.0)) return 0;
+    return static_cast<int>(std::min(std::floor(f), static_cast<double>(buckets_.size() - 1)));
+  }
+  double edge(int b) const { return domain_.lo + domain_.side * static_cast<double>(b) / static_cast<double>(buckets_.size()); }
+  // Points of the output's rows first .. first + size - 1.
+  void add(const PointSet& points, std::uint64_t first) {
+    std::vector<std::vector<double>> records(buckets_.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double* x = points.point(i);
+      const double z = x[n_ - 1];
+      zmin_ = std::min(zmin_, z);
+      zmax_ = std::max(zmax_, z);
+      const int b = bucket_of(z);
+      std::vector<double>& r = records[static_cast<std::size_t>(b)];
+      const std::uint64_t index = first + i;
+      double tag;
+      std::memcpy(&tag, &index, sizeof tag);
+      r.push_back(tag);
+      r.insert(r.end(), x, x + n_);
+      ++counts_[static_cast<std::size_t>(b)];
+    }
+    for (std::size_t b = 0; b < buckets_.size(); ++b)
+      if (!records[b].empty()) buckets_[b]->write(records[b].data(), records[b].size() * sizeof(double));
+    total_ += points.size();
+  }
+  std::uint64_t size() const { return total_; }
+  // Every point's distance to its nearest other point, into the distances file by index.
+  void measure(const FractionProgress& progress) {
+    for (auto& b : buckets_) b->rewind();
+    const double mean_spacing = domain_.side / std::pow(static_cast<double>(total_), 1.0 / n_);
+    for (int b = 0; b < static_cast<int>(buckets_.size()); ++b) {
+      if (counts_[static_cast<std::size_t>(b)] == 0) continue;
+      // The halo the last bucket needed, else the mean spacing; a bucket whose neighbours were not all
+      // within it is measured once more with the halo its distances ask for, which holds them all.
+      double h = halo_ > 0.0 ? halo_ : mean_spacing;
+      for (int attempt = 0;; ++attempt) {
+        const double needed = measure_bucket(b, h);
+        if (needed <= h) break;
+        h = attempt < 4 ? needed : 2.0 * h;
+      }
+      halo_ = h;
+      if (progress) progress(static_cast<double>(b + 1) / static_cast<double>(buckets_.size()));
+    }
+  }
+  // The summary: the sum in index order, the order statistics over sorted runs of `run_rows` rows.
+  NearestNeighbourSummary summarize(std::uint64_t run_rows) {
+    // Each bucket's (index, distance) pairs are sorted by index: a cursor per bucket fills the rows of
+    // one run at a time.
+    struct Cursor {
+      std::uint64_t read = 0;
+      std::vector<double> block;  // pairs: index bits, distance
+      std::size_t at = 0;
+    };
+    std::vector<Cursor> cursors(buckets_.size());
+    for (auto& p : pairs_) p->rewind();
+    double sum = 0.0;
+    std::vector<double> run;
+    for (std::uint64_t first = 0; first < total_; first += run_rows) {
+      const std::uint64_t end = std::min(total_, first + run_rows);
+      run.assign(static_cast<std::size_t>(end - first), std::numeric_limits<double>::quiet_NaN());
+      for (std::size_t b = 0; b < buckets_.size(); ++b) {
+        Cursor& c = cursors[b];
+        for (;;) {
+          if (c.at == c.block.size()) {
+            const std::uint64_t n = std::min<std::uint64_t>(1 << 14, measured_[b] - c.read);
+            if (n == 0) break;
+            c.block.resize(2 * n);
+            pairs_[b]->read_at(2 * c.read * sizeof(double), c.block.data(), c.block.size() * sizeof(double));
+            c.read += n;
+            c.at = 0;
+          }
+          std::uint64_t i;
+          std::memcpy(&i, &c.block[c.at], sizeof i);
+          if (i >= end) break;
+          run[static_cast<std::size_t>(i - first)] = c.block[c.at + 1];
+          c.at += 2;
+        }
+      }
+      for (double d : run) sum += d;  // in index order, as summarize_nearest_neighbours
+      runs_.add(run);
+    }
+    if (std::isnan(sum)) throw std::logic_error("a streamed point without its nearest-neighbour distance");
+    return summarize_nearest_neighbours(total_, sum, order_statistics(runs_), domain_.volume(n_), n_);
+  }
+
+ private:
+  // Loads bucket b and every point within h of it, measures, and writes bucket b's distances if every one
+  // is certainly the nearest (closer than the loaded region's edge). Returns the halo that holds every
+  // distance found (at most h when they were written): a point's true neighbour is no farther than the
+  // one found.
+  double measure_bucket(int b, double h) {
+    const double lo = edge(b) - h, hi = edge(b + 1) + h;
+    const bool all_below = lo <= zmin_, all_above = hi > zmax_;
+    PointSet set{n_, {}, domain_};
+    std::vector<std::uint64_t> index;
+    const std::size_t record = static_cast<std::size_t>(n_) + 1;
+    std::uint64_t queries = 0;
+    std::vector<double> block;
+    auto load = [&](int c, bool everything) {
+      constexpr std::uint64_t kRecords = 1 << 15;
+      const std::uint64_t count = counts_[static_cast<std::size_t>(c)];
+      for (std::uint64_t first = 0; first < count; first += kRecords) {
+        const std::uint64_t n = std::min(kRecords, count - first);
+        block.resize(n * record);
+        buckets_[static_cast<std::size_t>(c)]->read_at(first * record * sizeof(double), block.data(),
+                                                       block.size() * sizeof(double));
+        for (std::uint64_t k = 0; k < n; ++k) {
+          const double* r = block.data() + k * record;
+          const double z = r[n_];
+          if (!everything && !(z >= lo && z < hi)) continue;
+          std::uint64_t i;
+          std::memcpy(&i, r, sizeof i);
+          index.push_back(i);
+          set.coordinates.insert(set.coordinates.end(), r + 1, r + 1 + n_);
+        }
+      }
+    };
+    const int reach = static_cast<int>(std::ceil(h / (domain_.side / static_cast<double>(buckets_.size())))) + 1;
+    std::uint64_t expected = counts_[static_cast<std::size_t>(b)];
+    const double halo_share = std::min(1.0, h / (domain_.side / static_cast<double>(buckets_.size())));
+    for (int c = std::max(0, b - reach); c <= std::min(static_cast<int>(buckets_.size()) - 1, b + reach); ++c)
+      if (c != b && std::abs(c - b) == 1) expected += static_cast<std::uint64_t>(halo_share * static_cast<double>(counts_[static_cast<std::size_t>(c)]));
+    set.coordinates.reserve(expected * static_cast<std::uint64_t>(n_));
+    index.reserve(expected);
+    load(b, true);
+    queries = index.size();
+    for (int c = std::max(0, b - reach); c <= std::min(static_cast<int>(buckets_.size()) - 1, b + reach); ++c)
+      if (c != b) load(c, false);
+    if (set.size() < 2) {
+      if (all_below && all_above) throw std::invalid_argument("the statistics need at least 2 points");
+      return 2.0 * h;
+    }
+    const std::vector<double> d = nearest_neighbour_distances(set, config_.knn, config_.threads);
+    // The margins carry a relative slack far above the rounding of an edge and a difference.
+    constexpr double kSlack = 1e-9;
+    const double width = hi - lo;
+    double needed = h;
+    for (std::uint64_t q = 0; q < queries; ++q) {
+      const double z = set.point(q)[n_ - 1];
+      const double margin = std::min(all_below ? std::numeric_limits<double>::infinity() : z - lo,
+                                     all_above ? std::numeric_limits<double>::infinity() : hi - z);
+      if (!(d[q] <= margin - kSlack * width))  // the halo that would hold this point's neighbour, with room
+        needed = std::max(needed, (h + d[q] - margin) * (1.0 + 1e-6) + 2.0 * kSlack * width);
+    }
+    if (needed > h) return needed;
+    std::vector<std::pair<std::uint64_t, double>> pairs(queries);
+    for (std::uint64_t q = 0; q < queries; ++q) pairs[q] = {index[q], d[q]};
+    std::sort(pairs.begin(), pairs.end());
+    std::vector<double> out(2 * queries);
+    for (std::uint64_t q = 0; q < queries; ++q) {
+      std::memcpy(&out[2 * q], &pairs[q].first, sizeof(double));
+      out[2 * q + 1] = pairs[q].second;
+    }
+    pairs_[static_cast<std::size_t>(b)]->write(out.data(), out.size() * sizeof(double));
+    measured_[static_cast<std::size_t>(b)] = queries;
+    return h;
+  }
+
+  const SampleConfig& config_;
+  int n_;
+  Box domain_;
+  std::vector<std::unique_ptr<TemporaryFile>> buckets_;
+  std::vector<std::uint64_t> counts_;
+  std::vector<std::unique_ptr<TemporaryFile>> pairs_;  // per bucket: its points' (index, distance), by index
+  std::vector<std::uint64_t> measured_;
+  SortedRuns runs_;
+  std::uint64_t total_ = 0;
+  double halo_ = 0.0;  // the last bucket's halo
+  double zmin_ = std::numeric_limits<double>::infinity(), zmax_ = -std::numeric_limits<double>::infinity();
+};
+
+// One slab of a method: its points (accepted, in index order), its displacements (lattice methods: every
+// traced row) and its counts.
+struct Slab {
+  PointSet points;
+  std::vector<double> displacements;
+  std::uint64_t dropped = 0, skipped = 0, retraced = 0, kept = 0;
+  double trace_time = 0.0, field_frequency = 0.0;
+};
+
+Slab generate_slab(const SampleConfig& config, const MethodPlan& plan, std::uint64_t first, std::uint64_t rows) {
+  const LatticeSpec lattice = config.lattice();
+  Slab s;
+  switch (plan.method) {
+    case Method::cnj: {
+      CnjResult r = curl_noise_jitter_range(lattice, config.cnj, config.seed, first, rows, config.threads);
+      s.points = std::move(r.points);
+      s.displacements = std::move(r.displacements);
+      s.dropped = r.dropped;
+      s.skipped = r.trace_stats.skipped_updates;
+      s.retraced = r.retraced;
+      s.kept = r.kept_at_site;
+      s.trace_time = r.trace_time;
+      s.field_frequency = r.field_frequency;
+      return s;
+    }
+    case Method::jitter: {
+      s.points = jittered_lattice_range(lattice, jitter_half_width(lattice), first, rows, config.seed, config.threads);
+      const int n = config.dimension;
+      s.displacements.resize(s.points.coordinates.size());
+      std::vector<double> site(static_cast<std::size_t>(n));
+      for (std::uint64_t r = 0; r < rows; ++r) {
+        lattice.point(first + r, site.data());
+        for (int a = 0; a < n; ++a) s.displacements[r * n + a] = s.points.point(r)[a] - site[a];
+      }
+      return s;
+    }
+    case Method::random:
+      s.points = uniform_random_points_range(config.dimension, first, rows, plan.domain, config.seed, config.threads);
+      return s;
+    case Method::sobol:
+      s.points = sobol_points_range(config.dimension, first, rows, plan.domain, config.scramble, config.seed, config.threads);
+      return s;
+    default: break;
+  }
+  throw std::logic_error("a method that does not stream");
+}
+
+MethodResult run_streamed_method(const SampleConfig& config, const MethodPlan& plan, int slab_count,
+                                 const std::function<std::string(Method)>& point_path, PointFormat format,
+                                 const StageProgress& progress) {
+  const std::string name(to_string(plan.method));
+  MethodResult result;
+  result.plan = plan;
+  const Slabs slabs = slabs_of(config, plan, slab_count);
+  TemporaryDirectory dir;
+  const bool lattice_method = is_lattice(plan.method);
+  const LatticeSpec lattice = config.lattice();
+  const double spacing = plan.method == Method::cnj ? cnj_lattice(lattice, config.cnj.domain).spacing() : lattice.spacing();
+  std::unique_ptr<DisplacementStream> displacement;
+  if (lattice_method) displacement = std::make_unique<DisplacementStream>(config, spacing, dir.file("length_runs"));
+  std::unique_ptr<NearestStream> nearest;
+  const Box domain = plan.method == Method::cnj ? Box{0.0, 1.0} : plan.domain;
+  if (config.compute_statistics) {
+    if (domain_scale(domain.side) != 1.0) throw std::invalid_argument("--stream measures sets of ordinary side only");
+    nearest = std::make_unique<NearestStream>(config, dir, slab_count, domain);
+  }
+  // The count is known up front unless drop mode drops points.
+  const bool count_known = !(plan.method == Method::cnj && config.cnj.domain_mode == DomainMode::drop);
+  std::unique_ptr<PointFileWriter> writer;
+  if (point_path) writer = std::make_unique<PointFileWriter>(point_path(plan.method), format, config.dimension, plan.requested, count_known);
+
+  if (progress) progress(name, 0.0);
+  Stopwatch stopwatch;
+  std::uint64_t accepted = 0, dropped = 0, skipped = 0, retraced = 0, kept = 0;
+  double trace_time = 0.0, field_frequency = 0.0;
+  for (int s = 0; s < slabs.count; ++s) {
+    const std::uint64_t first = slabs.first(s), rows = slabs.first(s + 1) - first;
+    if (rows == 0) continue;
+    Slab slab = generate_slab(config, plan, first, rows);
+    if (writer) writer->append(slab.points.coordinates.data(), slab.points.size());
+    if (displacement) displacement->add(slab.displacements, first);
+    if (nearest) nearest->add(slab.points, accepted);
+    accepted += slab.points.size();
+    dropped += slab.dropped;
+    skipped += slab.skipped;
+    retraced += slab.retraced;
+    kept += slab.kept;
+    trace_time = slab.trace_time;
+    field_frequency = slab.field_frequency;
+    if (progress) progress(name, static_cast<double>(s + 1) / slabs.count);
+  }
+  result.point_count = accepted;
+  GenerationFacts& facts = result.facts;
+  if (plan.method == Method::cnj) {
+    facts.frequency = config.cnj.frequency;
+    facts.field_frequency = field_frequency;
+    facts.trace_time = trace_time;
+    facts.dropped = dropped;
+    facts.skipped_updates = skipped;
+    facts.retraced = retraced;
+    facts.kept_at_site = kept;
+    result.notes = fmt::format("{} noise; {} domain; {}", to_string(config.cnj.noise), to_string(config.cnj.domain),
+                               to_string(config.cnj.domain_mode));
+    if (config.cnj.field == FieldKind::curl) result.notes += "; curl noise field, no reprojection";
+  } else if (plan.method == Method::jitter) {
+    facts.half_width = jitter_half_width(lattice);
+  } else if (plan.method == Method::sobol) {
+    result.notes = fmt::format("{} scrambling", to_string(config.scramble));
+  }
+  if (displacement) result.displacement = displacement->finish();
+  result.seconds_generate = stopwatch.seconds();
+  // As in memory: a set too small to measure is an error before its point file is written.
+  if (nearest && accepted < 2)
+    throw std::invalid_argument(fmt::format("the {} point set has {} point(s) ({}); the statistics need at least 2", name,
+                                            accepted, facts.dropped ? fmt::format("{} dropped", *facts.dropped) : result.notes));
+  if (writer) writer->commit();
+  if (!nearest) return result;
+  const std::string stage = name + " statistics";
+  if (progress) progress(stage, 0.0);
+  stopwatch.restart();
+  nearest->measure([&](double f) {
+    if (progress) progress(stage, f);
+  });
+  result.nearest = nearest->summarize(slabs.rows);
+  result.measured = true;
+  result.seconds_stats = stopwatch.seconds();
+  return result;
+}
+
+}  // namespace
+
+std::string stream_refusal(const SampleConfig& config) {
+  if (config.on != Surface::none) return "--stream makes point sets in a cube, not --on sphere";
+  if (config.periodic_statistics) return "--stream measures Euclidean distances in the box, not --periodic";
+  if (config.compute_rdf) return "--stream computes no RDF: drop --rdf";
+  for (Method m : config.methods) {
+    if (m == Method::pds || m == Method::jitter_matched || m == Method::halton || m == Method::lhs)
+      return fmt::format("--stream makes the index-addressable sets cnj, jitter, random and sobol in slabs, not {}{}",
+                         to_string(m),
+                         m == Method::pds ? " (Poisson disk places each point after all before it)" : "");
+    if (m == Method::cnj && config.cnj.domain == CnjDomain::ball)
+      return "--stream cuts the K^N lattice into slabs, not the ball's clipped lattice: --domain torus or cube";
+  }
+  return {};
+}
+
+int stream_slab_count(const SampleConfig& config, int requested) {
+  const bool lattice = std::any_of(config.methods.begin(), config.methods.end(), is_lattice);
+  std::uint64_t fewest_points = std::numeric_limits<std::uint64_t>::max();
+  for (Method m : config.methods) fewest_points = std::min(fewest_points, plan_method(config, m).requested);
+  if (requested > 0) {
+    if (lattice && config.grid % requested != 0)
+      throw std::invalid_argument(fmt::format("--slabs {} does not divide --grid {}: a slab holds whole layers of the "
+                                              "lattice (divisors of {})",
+                                              requested, config.grid, config.grid));
+    if (static_cast<std::uint64_t>(requested) > fewest_points)
+      throw std::invalid_argument(fmt::format("--slabs {} is more slabs than points ({})", requested, fewest_points));
+    return requested;
+  }
+  std::uint64_t most_points = 0;
+  for (Method m : config.methods) most_points = std::max(most_points, plan_method(config, m).requested);
+  // The fewest slabs of at most kStreamSlabPoints points whose peak fits the memory limit (else the most).
+  const double limit = memory_limit_bytes(config);
+  const auto fits = [&](int s) {
+    return most_points / static_cast<std::uint64_t>(s) <= kStreamSlabPoints && streamed_peak_bytes(config, s) <= limit;
+  };
+  if (lattice) {
+    for (int s = 1; s <= config.grid; ++s)
+      if (config.grid % s == 0 && fits(s)) return s;
+    return config.grid;
+  }
+  const int most = static_cast<int>(std::min<std::uint64_t>(fewest_points, 1 << 20));
+  for (int s = 1; s < most; s *= 2)
+    if (fits(s)) return s;
+  return most;
+}
+
+double streamed_peak_bytes(const SampleConfig& config, int slabs) {
+  double peak = 0.0;
+  for (Method m : config.methods) {
+    const double points = static_cast<double>(plan_method(config, m).requested) / slabs;
+    // A bucket and a halo of about a layer each side, with the KD-tree's copy and the slab being written.
+    peak = std::max(peak, (points + 2.0 * static_cast<double>(layer_size(config))) * (16.0 * config.dimension + 48.0));
+  }
+  return peak;
+}
+
+std::vector<MethodResult> run_streamed_sampling(const SampleConfig& config, int slabs,
+                                                const std::function<std::string(Method)>& point_path,
+                                                PointFormat format, const StageProgress& progress) {
+  config.validate();
+  if (const std::string why = stream_refusal(config); !why.empty()) throw std::invalid_argument(why);
+  const int count = stream_slab_count(config, slabs);
+  std::vector<MethodResult> results;
+  for (Method m : config.methods)
+    results.push_back(run_streamed_method(config, plan_method(config, m), count, point_path, format, progress));
+  return results;
+}
+
+}  // namespace dfvn

@@ -1,0 +1,51 @@
+// The sampling experiment in slabs (sample --stream): point sets larger than memory, written and measured
+// a slab at a time, with the bytes and statistics of the in-memory run (experiment/experiment.hpp).
+//
+// Generation: slabs of consecutive point indices. The lattice methods (cnj, jitter) cut the K^N lattice
+// into S slabs of K/S whole layers of its slowest axis (the last coordinate: points are numbered axis 0
+// fastest, so a slab is a contiguous block of the output); random and Sobol, which are addressable by
+// index, into S blocks of ceil(n/S) indices. Every point depends only on its index (CNJ: on its site, the
+// options and the seed), so a slab gives the whole run's rows. Each slab is appended to the point file
+// (npy and bin: the final shape first) and its displacement sums are added in index order (the neighbour
+// pairs across a slab boundary with the previous slab's last layer kept).
+//
+// Statistics: the points are also spilled to S temporary buckets by their last coordinate; each bucket is
+// measured with a halo of the points within h of it from the others (h starts at the mean spacing and
+// doubles until every nearest neighbour found is closer than the halo's edge, so the distances are
+// exact), the distances go to a temporary file by point index, and are then summed in index order and
+// sorted per slab: min, q01 and the median are exact selections over those sorted runs.
+//
+// Memory is O(slab + halo); the temporaries (point count x (N + 2) x 8 bytes) go to $TMPDIR and are
+// removed on every exit. Not streamed: pds, jitter-matched, halton, lhs, --domain ball, --on sphere,
+// --periodic, --rdf, more than one realization (stream_refusal says which).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "dfvn/experiment/experiment.hpp"
+#include "dfvn/io/point_file.hpp"
+
+namespace dfvn {
+
+// Why `config` cannot run streamed (one line naming the option), or empty when it can.
+std::string stream_refusal(const SampleConfig& config);
+
+// The slab count: `requested` (0: the smallest count whose slabs hold at most kStreamSlabPoints points; for
+// the lattice methods a divisor of K). Throws std::invalid_argument when a lattice method is asked for a
+// count that does not divide K, or for more slabs than points.
+inline constexpr std::uint64_t kStreamSlabPoints = std::uint64_t{1} << 22;
+int stream_slab_count(const SampleConfig& config, int requested);
+
+// Bytes a streamed run needs at its peak (about): the largest bucket with its halo, measured.
+double streamed_peak_bytes(const SampleConfig& config, int slabs);
+
+// Runs every configured method in `slabs` slabs (stream_slab_count's), writing each method's points to
+// point_path(method) in `format` when point_path is given. Returns the results without points, as
+// run_sampling(config, false) does (the same statistics to the last bit).
+std::vector<MethodResult> run_streamed_sampling(const SampleConfig& config, int slabs,
+                                                const std::function<std::string(Method)>& point_path,
+                                                PointFormat format, const StageProgress& progress = {});
+
+}  // namespace dfvn
