@@ -22,12 +22,14 @@ void expect_rows(const PointSet& whole, const PointSet& part, std::uint64_t firs
 
 TEST(SamplingRanges, SobolRowsAcrossBlocks) {
   const Box box{0.0, 1.5};
-  for (Scramble scramble : {Scramble::owen, Scramble::none}) {
-    const PointSet whole = sobol_points(5, 10000, box, scramble, 7, 2);
-    for (auto [first, count] : {std::pair<std::uint64_t, std::uint64_t>{0, 10000}, {1, 4095}, {4000, 200}, {4096, 4096},
-                                {9999, 1}, {3, 9000}})
-      expect_rows(whole, sobol_points_range(5, first, count, box, scramble, 7, 1), first, count);
-  }
+  // 2D and 3D take the batched Owen kernel (batches of 8 from a range's first point), 5D the per-point one.
+  for (int dim : {2, 3, 5})
+    for (Scramble scramble : {Scramble::owen, Scramble::none}) {
+      const PointSet whole = sobol_points(dim, 10000, box, scramble, 7, 2);
+      for (auto [first, count] : {std::pair<std::uint64_t, std::uint64_t>{0, 10000}, {1, 4095}, {4000, 200},
+                                  {4096, 4096}, {9999, 1}, {3, 9000}, {5, 13}})
+        expect_rows(whole, sobol_points_range(dim, first, count, box, scramble, 7, 1), first, count);
+    }
 }
 
 TEST(SamplingRanges, RandomAndJitterRows) {
