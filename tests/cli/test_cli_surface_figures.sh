@@ -64,6 +64,14 @@ done
 holds "85 <= $(csv_value "$work/f10/figure10.csv" 1 mean_to_slope_deg) <= 95" && ok || bad "figure10: the drift is not along the contours"
 holds "abs($(csv_value "$work/f10/figure10.csv" 1 mean_dy) + 0.75) < 0.15" && ok || bad "figure10: mean dy is not the ramp's -0.75"
 
+# The thread count changes nothing but the seconds.
+"$bin" reproduce figure9 --slope 3,0 --grid 24 --rk4-steps 16 --segments 8 --image 64 --threads 1 --out "$work/f9t" -q >/dev/null 2>&1
+cmp -s "$work/f9/figure9_traces.csv" "$work/f9t/figure9_traces.csv" && cmp -s "$work/f9/figure9.png" "$work/f9t/figure9.png" \
+  && ok || bad "figure9 depends on the thread count"
+"$bin" reproduce figure7 --width 48 --rk4-steps 16 --threads 1 --out "$work/f7t" -q >/dev/null 2>&1
+cmp -s <(cut -d, -f1-11 "$work/f7/figure7.csv") <(cut -d, -f1-11 "$work/f7t/figure7.csv") \
+  && cmp -s "$work/f7/figure7_profile.csv" "$work/f7t/figure7_profile.csv" && ok || bad "figure7 depends on the thread count"
+
 # Every CSV: one type per column, reals with a decimal point or an exponent.
 python3 "$here/check_csv_types.py" "$work"/f6/*.csv "$work"/f7/*.csv "$work"/f9/*.csv "$work"/f10/*.csv >"$work/types" 2>&1 \
   && ok || bad "CSV types: $(cat "$work/types")"
