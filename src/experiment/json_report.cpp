@@ -113,9 +113,13 @@ std::string sampling_json(const SampleConfig& config, const std::vector<Sampling
     parameters["cnj"]["stretch"] = {{"direction", transform.stretch_direction}, {"factor", transform.stretch_factor}};
   if (transform.time) parameters["cnj"]["time"] = *transform.time;
   if (transform.lift.active())
-    parameters["cnj"]["lift"] = {{"height", transform.lift.kind == LiftSpec::Kind::plane ? "plane" : "bump"},
+  {
+    const LiftSpec::Kind kind = transform.lift.kind;
+    parameters["cnj"]["lift"] = {{"height", kind == LiftSpec::Kind::plane ? "plane" : kind == LiftSpec::Kind::bump ? "bump" : "npy"},
                                  {"parameters", transform.lift.parameters},
                                  {"ramp", transform.lift.ramp}};
+    if (kind == LiftSpec::Kind::npy) parameters["cnj"]["lift"]["file"] = transform.lift.path;
+  }
   parameters["periodic_statistics"] = config.periodic_statistics;
   // null: the protocol's radius, which each pds result gives under "generation".
   parameters["pds"] = {{"radius", config.pds_radius > 0.0 ? ordered_json(config.pds_radius) : ordered_json(nullptr)},
