@@ -1,4 +1,4 @@
-// dfvn-sample reproduce: table1, table2, cnj-study, integration, figure8 and constructions (reproduce/).
+// dfvn-sample reproduce: table1, table2, cnj-study, integration, figure6-10 and constructions (reproduce/).
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -15,6 +15,7 @@
 #include "dfvn/reproduce/figure8.hpp"
 #include "dfvn/reproduce/integration.hpp"
 #include "dfvn/reproduce/reproduce.hpp"
+#include "dfvn/reproduce/surface_figures.hpp"
 #include "dfvn/sampling/method.hpp"
 
 #include "options.hpp"
@@ -25,7 +26,7 @@ namespace {
 constexpr const char* kOutDirHelp = "Output directory (made if missing; its files are listed above)";
 
 struct ReproduceCommand : Subcommand {
-  CommonOptions common1, common2, common3, common4, common5, common6;
+  CommonOptions common1, common2, common3, common4, common5, common_constructions;
   dfvn::ConstructionsConfig constructions;
   dfvn::Figure8Config figure8;
   std::string figure8_lattice = "bcc";
@@ -45,6 +46,13 @@ struct ReproduceCommand : Subcommand {
   std::string table1_noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
   ProgressOptions progress;
   int table1_realizations = dfvn::Table1Config{}.realizations;
+  // figure6, figure7, figure9, figure10 (reproduce/surface_figures.hpp)
+  CommonOptions common6, common7, common9, common10;
+  dfvn::Figure6Config figure6;
+  dfvn::Figure7Config figure7;
+  dfvn::Figure9Config figure9, figure10{.ramp_figure = false, .out_dir = "out/figure10"};
+  std::string noise6{dfvn::to_string(dfvn::kDefaultNoiseBasis)}, noise7 = noise6, noise9 = noise6, noise10 = noise6;
+  std::vector<double> slope9 = {1.0, 0.5}, slope10 = {1.0, 0.5};
 
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand("reproduce", "Regenerate the paper's tables and figures, ours beside the paper's.");
@@ -150,8 +158,10 @@ struct ReproduceCommand : Subcommand {
     add_integration(cmd);
     add_figure8(cmd);
     add_constructions(cmd);
+    add_surface_figures(cmd);
     // After the subcommands, which would otherwise inherit it.
-    cmd->footer("Subcommands: table1, table2, cnj-study, integration, figure8, constructions; each has --help ('dfvn-sample reproduce table1\n"
+    cmd->footer("Subcommands: table1, table2, cnj-study, integration, figure6, figure7, figure8, figure9,\n"
+                "figure10, constructions; each has --help ('dfvn-sample reproduce table1\n"
                 "--help'), and 'dfvn-sample --help-all' prints them all.");
   }
 
@@ -296,13 +306,13 @@ struct ReproduceCommand : Subcommand {
         ->capture_default_str()
         ->check(CLI::Range(1, 10000000));
     progress.add_to(*c);
-    add_common_options(*c, common6);
+    add_common_options(*c, common_constructions);
     c->callback([this] { run_constructions(); });
   }
 
   void run_constructions() {
-    constructions.seed = common6.seed;
-    constructions.threads = common6.threads;
+    constructions.seed = common_constructions.seed;
+    constructions.threads = common_constructions.threads;
     constructions.validate();
     dfvn::check_figure_prerequisites();  // before the output folder is made
     dfvn::check_outputs(files_in(constructions.out_dir, dfvn::constructions_output_files()), {constructions.out_dir});
@@ -310,6 +320,138 @@ struct ReproduceCommand : Subcommand {
     const auto result = dfvn::run_constructions(constructions, reporter->callback());
     reporter->complete();
     std::fputs(dfvn::markdown_as_plain_text(dfvn::write_constructions(result, log)).c_str(), stdout);
+  }
+
+  void add_surface_figures(CLI::App* cmd) {
+    CLI::App* f6 = cmd->add_subcommand(
+        "figure6",
+        "Figure 6 (Section 5.3): a texture on the unit sphere warped along the 3D field tangent to the sphere (f_1 = |x|^2\n"
+        "up to a constant): RK4 at 32 and 128 steps, without and with projection (Gauss-Newton reprojection), against\n"
+        "2048 RK4 steps. Writes DIR/figure6.csv (RMSE and the drift of |x| from 1 per setting), DIR/figure6.md, and\n"
+        "DIR/source.png, DIR/reference.png, DIR/rk4-<steps>[-projected].png (equirectangular maps); prints figure6.md\n"
+        "as plain text.");
+    f6->add_option("--out", figure6.out_dir, kOutDirHelp)->capture_default_str();
+    f6->add_option("--width", figure6.width, "Image width in pixels of the equirectangular map (even; its height is half)")
+        ->capture_default_str();
+    f6->add_option("--trace-time", figure6.time, "Trace time t of every pixel, in (0, 100] (RMS |c| = 1: unit lengths)")
+        ->capture_default_str();
+    f6->add_option("--frequency", figure6.frequency, "Noise frequency F in cycles per unit length (the sphere's radius is 1)")
+        ->capture_default_str()
+        ->check(kNoiseFrequency);
+    add_noise_option(*f6, noise6);
+    progress.add_to(*f6);
+    add_common_options(*f6, common6);
+    f6->callback([this] { run_figure6(); });
+
+    CLI::App* f7 = cmd->add_subcommand(
+        "figure7",
+        "Figure 7 (Section 5.4): a ring pattern in the unit square warped along 2D DFVN bounded by the disc of radius 1/2\n"
+        "(Eq. 13). Writes DIR/figure7.csv (the samples that leave the disc, the change outside it), DIR/figure7_profile.csv\n"
+        "(the radial profile), DIR/figure7.md, DIR/source.png and DIR/warped.png; prints figure7.md as plain text.");
+    f7->add_option("--out", figure7.out_dir, kOutDirHelp)->capture_default_str();
+    f7->add_option("--width", figure7.width, "Image width in pixels of the unit square (square image)")->capture_default_str();
+    f7->add_option("--trace-time", figure7.time, "Trace time t of every pixel, in (0, 100] (RMS |c| = 1: unit lengths)")
+        ->capture_default_str();
+    f7->add_option("--rk4-steps", figure7.steps, "RK4 steps per trace, each followed by Gauss-Newton reprojection")
+        ->capture_default_str();
+    f7->add_option("--frequency", figure7.frequency, "Noise frequency F in cycles per unit length")
+        ->capture_default_str()
+        ->check(kNoiseFrequency);
+    f7->add_option("--boundary-width", figure7.transition_width,
+                   "Eq. 13's transition width in length units, in (0, 0.25] (the disc's radius is 0.5)")
+        ->capture_default_str();
+    f7->add_option("--rings", figure7.rings, "Rings of the pattern 0.5 + 0.5 cos(2 pi K r / 0.5) inside the disc")
+        ->capture_default_str();
+    f7->add_option("--bins", figure7.bins, "Radial profile bins over r in [0, sqrt(2)/2]")->capture_default_str();
+    add_noise_option(*f7, noise7);
+    progress.add_to(*f7);
+    add_common_options(*f7, common7);
+    f7->callback([this] { run_figure7(); });
+
+    add_slope_figure(cmd, figure9, slope9, noise9, common9);
+    add_slope_figure(cmd, figure10, slope10, noise10, common10);
+  }
+
+  void add_slope_figure(CLI::App* cmd, dfvn::Figure9Config& config, std::vector<double>& slope, std::string& noise,
+                        CommonOptions& common) {
+    const bool ramp = config.ramp_figure;
+    CLI::App* f = cmd->add_subcommand(
+        config.name(),
+        fmt::format("{} (Section 5.5): particle traces over the sloped surface h = SX x + SY y (the 2D field lifted onto\n"
+                    "it, --lift plane:SX,SY), {} the vertical ramp (--lift-ramp); the displacement covariance's\n"
+                    "principal direction against the slope direction. Writes DIR/{}.csv, DIR/{}_traces.csv, DIR/{}.md and\n"
+                    "DIR/{}.png; prints {}.md as plain text.",
+                    ramp ? "Figure 9" : "Figure 10", ramp ? "with" : "without", config.name(), config.name(),
+                    config.name(), config.name(), config.name()));
+    f->add_option("--out", config.out_dir, kOutDirHelp)->capture_default_str();
+    f->add_option("--slope", slope, "Slope SX,SY of the plane h = SX x + SY y (length units per length unit; not 0,0)")
+        ->delimiter(',')
+        ->expected(2)
+        ->capture_default_str();
+    if (ramp)
+      f->add_option("--lift-ramp", config.ramp,
+                    "BETA of --lift-ramp (sample, field; README calls it the vertical ramp of the paper's Figure 9):\n"
+                    "F(x, z) + BETA z adds BETA perp(grad h) to c, in RMS-speed units")
+          ->capture_default_str()
+          ->type_name("BETA");
+    f->add_option("--grid", config.grid, "Lattice points per axis K of the start lattice (cell centres of the unit square)")
+        ->capture_default_str();
+    f->add_option("--trace-time", config.time, "Trace time t of every particle, in (0, 100] (RMS |c| = 1: unit lengths)")
+        ->capture_default_str();
+    f->add_option("--rk4-steps", config.steps,
+                  "RK4 steps per trace, each followed by Gauss-Newton reprojection (a multiple of --segments)")
+        ->capture_default_str();
+    f->add_option("--segments", config.segments, "Trace points drawn and written after the start")->capture_default_str();
+    f->add_option("--frequency", config.frequency, "Noise frequency F in cycles per unit length")
+        ->capture_default_str()
+        ->check(kNoiseFrequency);
+    f->add_option("--image", config.image, "Side of the PNG in pixels")->capture_default_str();
+    add_noise_option(*f, noise);
+    progress.add_to(*f);
+    add_common_options(*f, common);
+    f->callback([this, &config, &slope, &noise, &common] { run_slope_figure(config, slope, noise, common); });
+  }
+
+  void run_figure6() {
+    figure6.noise = dfvn::parse_noise_basis(noise6);
+    figure6.seed = common6.seed;
+    figure6.threads = common6.threads;
+    figure6.validate();
+    dfvn::check_outputs(files_in(figure6.out_dir, dfvn::figure6_output_files()), {figure6.out_dir});
+    dfvn::ProgressReporter* reporter = progress.make(dfvn::figure6_stage_weights(figure6));
+    const auto result = dfvn::run_figure6(figure6, reporter->callback());
+    reporter->complete();
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_figure6(result)).c_str(), stdout);
+  }
+
+  void run_figure7() {
+    figure7.noise = dfvn::parse_noise_basis(noise7);
+    figure7.seed = common7.seed;
+    figure7.threads = common7.threads;
+    figure7.validate();
+    dfvn::check_outputs(files_in(figure7.out_dir, dfvn::figure7_output_files()), {figure7.out_dir});
+    dfvn::ProgressReporter* reporter = progress.make(1);
+    const dfvn::StageProgress stage = reporter->callback();
+    const auto result = dfvn::run_figure7(figure7, [&](double f) { if (stage) stage("figure7", f); });
+    reporter->complete();
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_figure7(result)).c_str(), stdout);
+  }
+
+  void run_slope_figure(dfvn::Figure9Config& config, const std::vector<double>& slope, const std::string& noise,
+                        const CommonOptions& common) {
+    config.slope_x = slope.at(0);
+    config.slope_y = slope.at(1);
+    config.noise = dfvn::parse_noise_basis(noise);
+    config.seed = common.seed;
+    config.threads = common.threads;
+    config.validate();
+    dfvn::check_outputs(files_in(config.out_dir, dfvn::figure9_output_files(config)), {config.out_dir});
+    dfvn::ProgressReporter* reporter = progress.make(1);
+    const dfvn::StageProgress stage = reporter->callback();
+    const std::string name = config.name();
+    const auto result = dfvn::run_figure9(config, [&](double f) { if (stage) stage(name, f); });
+    reporter->complete();
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_figure9(result)).c_str(), stdout);
   }
 
   static void log(const std::string& line) { std::fprintf(stderr, "%s: %s\n", kProgram, line.c_str()); }

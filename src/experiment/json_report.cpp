@@ -113,9 +113,13 @@ std::string sampling_json(const SampleConfig& config, const std::vector<Sampling
     parameters["cnj"]["stretch"] = {{"direction", transform.stretch_direction}, {"factor", transform.stretch_factor}};
   if (transform.time) parameters["cnj"]["time"] = *transform.time;
   if (transform.lift.active())
-    parameters["cnj"]["lift"] = {{"height", transform.lift.kind == LiftSpec::Kind::plane ? "plane" : "bump"},
+  {
+    const LiftSpec::Kind kind = transform.lift.kind;
+    parameters["cnj"]["lift"] = {{"height", kind == LiftSpec::Kind::plane ? "plane" : kind == LiftSpec::Kind::bump ? "bump" : "npy"},
                                  {"parameters", transform.lift.parameters},
                                  {"ramp", transform.lift.ramp}};
+    if (kind == LiftSpec::Kind::npy) parameters["cnj"]["lift"]["file"] = transform.lift.path;
+  }
   if (transform.steer.active())
     parameters["cnj"]["steer"] = {{"field", transform.steer.circular ? "circular" : "constant"},
                                   {"direction", transform.steer.direction},

@@ -1,5 +1,6 @@
 #include "dfvn/field/field_transform.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <numbers>
@@ -8,6 +9,8 @@
 #include <fmt/format.h>
 
 #include "dfvn/core/message_text.hpp"
+#include "dfvn/io/csv.hpp"
+#include "dfvn/io/point_reader.hpp"
 
 namespace dfvn {
 
@@ -66,6 +69,91 @@ class BumpHeight final : public HeightField {
   Vec<2> centre_;
 };
 
+// The interpolating tensor cubic B-spline of a height grid (LiftSpec::Kind::npy, field_transform.hpp):
+// control points c with (c[k-1] + 4 c[k] + c[k+1]) / 6 = v[k] along each axis, c[-1] = c[0] and c[n] =
+// c[n-1] (the border's control point repeated, which is also how the spline continues beyond the grid).
+// The uniform cubic B-spline is C2 whatever its control points, so h is C2 everywhere; it passes through
+// every grid value and is constant (c at the nearest corner or edge) from two grid spacings beyond.
+class SplineHeight final : public HeightField {
+ public:
+  explicit SplineHeight(const HeightGrid& grid) : rows_(grid.rows), columns_(grid.columns), control_(grid.values) {
+    std::vector<double> line;
+    for (int i = 0; i < rows_; ++i) {  // along x, in each row
+      line.assign(control_.begin() + static_cast<std::ptrdiff_t>(i) * columns_,
+                  control_.begin() + static_cast<std::ptrdiff_t>(i + 1) * columns_);
+      prefilter(line);
+      std::copy(line.begin(), line.end(), control_.begin() + static_cast<std::ptrdiff_t>(i) * columns_);
+    }
+    line.resize(rows_);
+    for (int j = 0; j < columns_; ++j) {  // along y, in each column
+      for (int i = 0; i < rows_; ++i) line[i] = control_[static_cast<std::size_t>(i) * columns_ + j];
+      prefilter(line);
+      for (int i = 0; i < rows_; ++i) control_[static_cast<std::size_t>(i) * columns_ + j] = line[i];
+    }
+  }
+
+  double height(const Vec<2>& x, Vec<2>& gradient) const override {
+    // Grid coordinates: column j at x = j / (columns - 1), row i at y = i / (rows - 1). Beyond two
+    // spacings outside, every control point read is the border's: clamping there changes nothing.
+    const double gx = std::clamp(x[0] * (columns_ - 1), -2.0, columns_ + 1.0);
+    const double gy = std::clamp(x[1] * (rows_ - 1), -2.0, rows_ + 1.0);
+    const double fx = std::floor(gx), fy = std::floor(gy);
+    double wx[4], dx[4], wy[4], dy[4];
+    weights(gx - fx, wx, dx);
+    weights(gy - fy, wy, dy);
+    const int j0 = static_cast<int>(fx) - 1, i0 = static_cast<int>(fy) - 1;
+    double h = 0.0, hx = 0.0, hy = 0.0;
+    for (int a = 0; a < 4; ++a) {
+      const int i = std::clamp(i0 + a, 0, rows_ - 1);
+      double row = 0.0, row_dx = 0.0;
+      for (int b = 0; b < 4; ++b) {
+        const double c = control_[static_cast<std::size_t>(i) * columns_ + std::clamp(j0 + b, 0, columns_ - 1)];
+        row += wx[b] * c;
+        row_dx += dx[b] * c;
+      }
+      h += wy[a] * row;
+      hx += wy[a] * row_dx;
+      hy += dy[a] * row;
+    }
+    gradient = Vec<2>(hx * (columns_ - 1), hy * (rows_ - 1));
+    return h;
+  }
+
+ private:
+  // The uniform cubic B-spline's four weights at u in [0, 1) and their derivatives.
+  static void weights(double u, double w[4], double d[4]) {
+    const double v = 1.0 - u, u2 = u * u, u3 = u2 * u;
+    w[0] = v * v * v / 6.0;
+    w[1] = (3.0 * u3 - 6.0 * u2 + 4.0) / 6.0;
+    w[2] = (-3.0 * u3 + 3.0 * u2 + 3.0 * u + 1.0) / 6.0;
+    w[3] = u3 / 6.0;
+    d[0] = -0.5 * v * v;
+    d[1] = 1.5 * u2 - 2.0 * u;
+    d[2] = -1.5 * u2 + u + 0.5;
+    d[3] = 0.5 * u2;
+  }
+  // Solves (c[k-1] + 4 c[k] + c[k+1]) / 6 = v[k] with c[-1] = c[0], c[n] = c[n-1] in place (Thomas's
+  // algorithm; the matrix is strictly diagonally dominant, so no pivoting is needed).
+  static void prefilter(std::vector<double>& v) {
+    const std::size_t n = v.size();
+    std::vector<double> upper(n);
+    auto diagonal = [n](std::size_t k) { return (k == 0 || k + 1 == n) ? 5.0 / 6.0 : 4.0 / 6.0; };
+    constexpr double off = 1.0 / 6.0;
+    double pivot = diagonal(0);
+    upper[0] = off / pivot;
+    v[0] /= pivot;
+    for (std::size_t k = 1; k < n; ++k) {
+      pivot = diagonal(k) - off * upper[k - 1];
+      upper[k] = off / pivot;
+      v[k] = (v[k] - off * v[k - 1]) / pivot;
+    }
+    for (std::size_t k = n - 1; k-- > 0;) v[k] -= upper[k] * v[k + 1];
+  }
+
+  int rows_, columns_;
+  std::vector<double> control_;
+};
+
 }  // namespace
 
 void NoiseTransform::validate() const {
@@ -92,6 +180,8 @@ void NoiseTransform::validate() const {
       throw std::invalid_argument("--lift plane:SX,SY takes two slopes");
     if (lift.kind == LiftSpec::Kind::bump && lift.parameters.size() != 4)
       throw std::invalid_argument("--lift bump:H,R[,CX,CY] takes a height, a radius and optionally a centre");
+    if (lift.kind == LiftSpec::Kind::npy && (!lift.grid || lift.grid->rows < 2 || lift.grid->columns < 2))
+      throw std::invalid_argument("--lift npy:FILE: the height grid needs at least 2 rows and 2 columns");
     if (lift.kind == LiftSpec::Kind::bump && !(lift.parameters[1] > 0.0))
       throw std::invalid_argument(fmt::format("--lift bump: the radius R must be positive, got {}", lift.parameters[1]));
   }
@@ -136,12 +226,27 @@ LiftSpec parse_lift(std::string_view text) {
   const std::size_t colon = text.find(':');
   const std::string_view name = text.substr(0, colon);
   LiftSpec spec;
+  if (name == "npy" && colon != std::string_view::npos) {
+    spec.kind = LiftSpec::Kind::npy;
+    spec.path = std::string(text.substr(colon + 1));
+    if (spec.path.empty()) throw std::invalid_argument("--lift npy:FILE: the file name is missing");
+    try {
+      NpyMatrix matrix = read_npy_matrix(spec.path);
+      spec.grid = std::make_shared<const HeightGrid>(HeightGrid{matrix.rows, matrix.columns, std::move(matrix.values)});
+    } catch (const InputError& e) {
+      throw std::invalid_argument(fmt::format("--lift npy:{}: {}", quote_for_message(spec.path), e.what()));
+    }
+    NoiseTransform check;
+    check.lift = spec;
+    check.validate();
+    return spec;
+  }
   if (name == "plane")
     spec.kind = LiftSpec::Kind::plane;
   else if (name == "bump")
     spec.kind = LiftSpec::Kind::bump;
   else
-    throw std::invalid_argument(fmt::format("--lift takes plane:SX,SY or bump:H,R[,CX,CY], got '{}'",
+    throw std::invalid_argument(fmt::format("--lift takes plane:SX,SY, bump:H,R[,CX,CY] or npy:FILE, got '{}'",
                                             quote_for_message(std::string(text))));
   if (colon == std::string_view::npos) throw std::invalid_argument(fmt::format("--lift {}: its parameters are missing", name));
   spec.parameters = parse_reals(text.substr(colon + 1), fmt::format("--lift {}", name));
@@ -157,6 +262,7 @@ std::shared_ptr<const HeightField> make_height_field(const LiftSpec& spec) {
     case LiftSpec::Kind::plane: return std::make_shared<const PlaneHeight>(spec.parameters[0], spec.parameters[1]);
     case LiftSpec::Kind::bump:
       return std::make_shared<const BumpHeight>(spec.parameters[0], spec.parameters[1], spec.parameters[2], spec.parameters[3]);
+    case LiftSpec::Kind::npy: return std::make_shared<const SplineHeight>(*spec.grid);
     case LiftSpec::Kind::none: break;
   }
   throw std::invalid_argument("no height field");

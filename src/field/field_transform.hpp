@@ -29,9 +29,25 @@ inline constexpr double kMaxStretch = 1e6;
 //                 of the noise: F is read at (x, grad h . x));
 // - bump:H,R[,CX,CY]  h(x) = H (1 - r^2)^3 for r = |x - (CX, CY)| / R < 1, else 0 (value, slope and
 //                 curvature 0 at r = 1, so C2; a polynomial in r^2, so smooth at the centre); R > 0.
+// - npy:FILE      a 2D float64/float32 array (rows, columns) from a .npy file, each side 2..65536, every
+//                 element finite, heights in length units. Element (i, j) is the height at x = j / (columns - 1),
+//                 y = i / (rows - 1): the columns run along x and the rows along y over the unit square [0, 1]^2,
+//                 corners included (numpy's h[i, j] = f(x_j, y_i), as np.meshgrid's default 'xy' gives). h is the
+//                 interpolating tensor cubic B-spline of the array: it passes through every element and is C2
+//                 everywhere (the B-spline is C2 whatever its control points, which are prefiltered so that it
+//                 interpolates); beyond the square its control points continue as the border's, so h levels
+//                 off to a constant from two grid spacings outside, still C2.
+struct HeightGrid {
+  int rows = 0;
+  int columns = 0;
+  std::vector<double> values;  // rows x columns, element (i, j) at i * columns + j
+};
+
 struct LiftSpec {
-  enum class Kind { none, plane, bump } kind = Kind::none;
-  std::vector<double> parameters;  // plane: SX, SY; bump: H, R, CX, CY
+  enum class Kind { none, plane, bump, npy } kind = Kind::none;
+  std::vector<double> parameters;  // plane: SX, SY; bump: H, R, CX, CY; npy: none
+  std::string path;                // npy: the file it was read from
+  std::shared_ptr<const HeightGrid> grid;  // npy: the array, read once by parse_lift
   // The vertical ramp of the paper's Figure 9: F(x, z) + ramp z, ramp in RMS-speed units (the speed
   // that a unit slope adds, along the contour lines of h). 0: Figure 10's lift, no ramp.
   double ramp = 0.0;
@@ -65,7 +81,8 @@ void check_transform_available(const NoiseTransform& transform, int dimension, b
 
 // "U:S" (U comma-separated, any length, e.g. "1,0:2"), into `transform`; throws std::invalid_argument.
 void parse_stretch(std::string_view text, NoiseTransform& transform);
-// "plane:SX,SY" or "bump:H,R[,CX,CY]"; throws std::invalid_argument.
+// "plane:SX,SY", "bump:H,R[,CX,CY]" or "npy:FILE" (the file is read here); throws std::invalid_argument
+// with one line (for a file: its name and what is wrong with it, io/point_reader.hpp read_npy_matrix).
 LiftSpec parse_lift(std::string_view text);
 std::shared_ptr<const HeightField> make_height_field(const LiftSpec& spec);
 

@@ -250,8 +250,14 @@ class NpyHeaderScanner {
 };
 
 // NPY format 1.0-3.0: magic "\x93NUMPY", major, minor, header length (2 bytes in 1.x, 4 in 2.x/3.x,
-// little endian), the header dict, then the data.
-std::vector<PointTable> parse_npy(std::string_view bytes) {
+// little endian), the header dict, then the data. The dtype must be float64 or float32 (item_size).
+struct NpyLayout {
+  NpyHeader header;
+  std::size_t item_size = 0;
+  std::size_t data_start = 0;
+};
+
+NpyLayout npy_layout(std::string_view bytes) {
   if (bytes.size() < 10 || bytes.substr(0, 6) != std::string_view("\x93NUMPY", 6))
     throw InputError("not a NumPy .npy file (no \\x93NUMPY magic)");
   const int major = static_cast<unsigned char>(bytes[6]);
@@ -268,15 +274,65 @@ std::vector<PointTable> parse_npy(std::string_view bytes) {
   }
   // header_start + header_length < 2^33: no overflow.
   if (bytes.size() < header_start + header_length) throw InputError("npy: truncated header");
-  const NpyHeader header = NpyHeaderScanner(bytes.substr(header_start, header_length)).parse();
-  const std::string& descr = header.descr;
+  NpyLayout layout;
+  layout.header = NpyHeaderScanner(bytes.substr(header_start, header_length)).parse();
+  const std::string& descr = layout.header.descr;
   const bool little = std::endian::native == std::endian::little;
-  std::size_t item_size = 0;
-  if ((descr == "<f8" && little) || descr == "=f8") item_size = 8;
-  else if ((descr == "<f4" && little) || descr == "=f4") item_size = 4;
+  if ((descr == "<f8" && little) || descr == "=f8") layout.item_size = 8;
+  else if ((descr == "<f4" && little) || descr == "=f4") layout.item_size = 4;
   else
     throw InputError(fmt::format("npy: dtype {} is not supported (allowed float64 '<f8' and float32 '<f4')",
                                  quote_for_message(descr)));
+  layout.data_start = header_start + header_length;
+  return layout;
+}
+
+double npy_element(const char* data, std::uint64_t element, std::size_t item_size) {
+  if (item_size == 8) {
+    double value;
+    std::memcpy(&value, data + element * 8, 8);
+    return value;
+  }
+  float single;
+  std::memcpy(&single, data + element * 4, 4);
+  return single;
+}
+
+}  // namespace
+
+NpyMatrix parse_npy_matrix(std::string_view bytes) {
+  const NpyLayout layout = npy_layout(bytes);
+  const std::vector<std::uint64_t>& shape = layout.header.shape;
+  if (shape.size() != 2)
+    throw InputError(fmt::format("npy: shape {} is not a 2D array (rows, columns)", shape_text(shape)));
+  if (shape[0] < 2 || shape[1] < 2 || shape[0] > kMaxNpyMatrixSide || shape[1] > kMaxNpyMatrixSide)
+    throw InputError(fmt::format("npy: shape {} needs 2..{} rows and columns", shape_text(shape), kMaxNpyMatrixSide));
+  const std::uint64_t count = shape[0] * shape[1];  // at most 2^32
+  const std::uint64_t available = bytes.size() - layout.data_start;
+  if (count * layout.item_size != available)
+    throw InputError(fmt::format("npy: shape {} of dtype '{}' needs {} data bytes, the file has {}", shape_text(shape),
+                                 layout.header.descr, count * layout.item_size, available));
+  NpyMatrix matrix{static_cast<int>(shape[0]), static_cast<int>(shape[1]), std::vector<double>(count)};
+  const char* data = bytes.data() + layout.data_start;
+  for (std::uint64_t i = 0; i < shape[0]; ++i)
+    for (std::uint64_t j = 0; j < shape[1]; ++j) {
+      const double value = npy_element(data, layout.header.fortran_order ? j * shape[0] + i : i * shape[1] + j, layout.item_size);
+      if (!std::isfinite(value))
+        throw InputError(fmt::format("npy: element ({}, {}) is {} (only finite numbers are allowed)", i, j, value));
+      matrix.values[i * shape[1] + j] = value;
+    }
+  return matrix;
+}
+
+NpyMatrix read_npy_matrix(const std::string& path) { return parse_npy_matrix(read_whole_file(path)); }
+
+namespace {
+
+std::vector<PointTable> parse_npy(std::string_view bytes) {
+  const NpyLayout layout = npy_layout(bytes);
+  const NpyHeader& header = layout.header;
+  const std::string& descr = header.descr;
+  const std::size_t item_size = layout.item_size;
   const std::string shape = shape_text(header.shape);
   if (header.shape.empty() || header.shape.size() > 3)
     throw InputError(fmt::format("npy: shape {} is not (points, dimension), (points,) or (sets, points, dimension)", shape));
@@ -291,7 +347,7 @@ std::vector<PointTable> parse_npy(std::string_view bytes) {
   std::uint64_t rows = 0;
   if (__builtin_mul_overflow(set_count, set_rows, &rows))
     throw InputError(fmt::format("npy: shape {} holds more than 2^64 points", shape));
-  const std::size_t data_start = header_start + header_length;
+  const std::size_t data_start = layout.data_start;
   const std::uint64_t available = bytes.size() - data_start;
   // rows x N x item size in checked arithmetic: a header may declare (2^62, 8), whose product wraps.
   const std::uint64_t row_bytes = static_cast<std::uint64_t>(dimension) * item_size;  // at most 64
@@ -314,14 +370,7 @@ std::vector<PointTable> parse_npy(std::string_view bytes) {
           !header.fortran_order ? i * dimension + k
           : several ? k * rows + (i % set_rows) * set_count + i / set_rows
                     : k * rows + i;
-      double value;
-      if (item_size == 8) {
-        std::memcpy(&value, data + element * 8, 8);
-      } else {
-        float single;
-        std::memcpy(&single, data + element * 4, 4);
-        value = single;
-      }
+      const double value = npy_element(data, element, item_size);
       if (!std::isfinite(value))
         throw InputError(fmt::format("npy: element ({}, {}) is {} (only finite numbers are allowed)", i, k, value));
       table.coordinates[i * dimension + k] = value;

@@ -3,6 +3,7 @@
 // line, lines starting with '#' separate sets) and UTK's binary .bin (io/utk_bin.hpp).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -33,6 +34,19 @@ std::vector<PointTable> read_point_sets(const std::string& path, InputFormat for
 
 // The same from bytes already in memory (for tests).
 std::vector<PointTable> parse_point_sets(std::string_view bytes, InputFormat format, int bin_dimension = 0);
+
+// A 2D float64 or float32 .npy array (C or Fortran order) of shape (rows, columns), each 2..kMaxNpyMatrixSide,
+// every element finite, as rows x columns values in C order (element (i, j) at i * columns + j): the
+// height fields of --lift npy:FILE. Throws InputError with one line naming the dtype, the shape (not 2D,
+// too small or large, the data size) or the first element that is not finite.
+inline constexpr std::uint64_t kMaxNpyMatrixSide = 65536;
+struct NpyMatrix {
+  int rows = 0;
+  int columns = 0;
+  std::vector<double> values;
+};
+NpyMatrix parse_npy_matrix(std::string_view bytes);
+NpyMatrix read_npy_matrix(const std::string& path);  // "-": standard input
 
 // Every byte of the file ("-": standard input). Throws InputError if it cannot be read.
 std::string read_whole_file(const std::string& path);

@@ -56,7 +56,10 @@ run table2 reproduce table2 --width 32 --height 18 --second-width 16 --out r2 -q
 run cnj_study reproduce cnj-study --dims 3 --realizations 2 --cycles-per-spacing 0.5,1 --step-scales 0.5 --steps 1 --out r3 -q
 run integration reproduce integration --dims 3 --realizations 2 --max-points 512 --methods jitter,random,pds --out r4 -q
 run figure8 reproduce figure8 --frames 20 --grid-2d 6 --grid-3d 3 --drop-margin 1 --out r5 -q
-run constructions reproduce constructions --divergence-points 1000 --speed-points 200 --trace-starts 4 --escape-starts 20 --out r6 -q
+run constructions reproduce constructions --divergence-points 1000 --speed-points 200 --trace-starts 4 --escape-starts 20 --out rc -q
+run figure6 reproduce figure6 --width 16 --out r6 -q
+run figure7 reproduce figure7 --width 24 --rk4-steps 8 --out r7 -q
+run figure10 reproduce figure10 --grid 4 --rk4-steps 8 --segments 4 --image 32 --out r10 -q
 # animate: frames.csv and trails.csv, conformant and drop.
 run animate animate --dim 2 --grid 6 --frames 30 --out a1 -q
 run animate_drop animate --dim 3 --grid 3 --lattice bcc --frames 30 --domain-mode drop --drop-margin 1 --out a2 -q
@@ -67,7 +70,8 @@ for f in all.csv all_rdf.csv pts/cnj.csv pts/lhs.csv count.csv realizations.csv 
   torus.csv stats.csv stats_sets.csv stats_side.csv stats_spectrum.csv spectrum.csv spectrum_radial.csv field.csv \
   field_cube.csv diagnose1.csv diagnose2.csv r1/table1.csv r1/rdf.csv r2/table2.csv r2/timeline.csv \
   r3/cnj_study.csv r3/cnj_study_jitter.csv r4/integration.csv r4/integration_slopes.csv r5/figure8_frames.csv \
-  r5/figure8_tracks.csv r6/constructions.csv r6/curl_obstacle.csv a1/frames.csv a1/trails.csv a2/frames.csv a2/trails.csv; do
+  r5/figure8_tracks.csv rc/constructions.csv rc/curl_obstacle.csv r6/figure6.csv r7/figure7.csv r7/figure7_profile.csv r10/figure10.csv r10/figure10_traces.csv \
+  a1/frames.csv a1/trails.csv a2/frames.csv a2/trails.csv; do
   [[ -s $f ]] && ok || bad "$f not written"
 done
 mapfile -t csvs < <(find . -name '*.csv' | sort)

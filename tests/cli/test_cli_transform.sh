@@ -69,6 +69,21 @@ check_bad "sample --stretch on the torus" "torus" --dim 3 --grid 4 -q --stretch 
 for spec in plane plane: plane:1 plane:1,2,3 bump:1 bump:1,0 bump:1,-1 cone:1,2 plane:nan,1 "" npy:h.npy; do
   check_bad "--lift '$spec'" "lift" field --input points_2d.csv --lift "$spec"
 done
+# --lift npy:FILE: a 2D float array over the unit square; a bad array is one line naming the file.
+/usr/bin/python3 -c '
+import numpy as np
+h = np.linspace(0, 1, 5)[None, :] * np.linspace(0, 1, 4)[:, None]
+np.save("good.npy", h)
+np.save("good32.npy", h.astype(np.float32))
+bad = h.copy(); bad[1, 2] = np.nan; np.save("nan.npy", bad)
+np.save("ndim1.npy", h.ravel()); np.save("ndim3.npy", h[None]); np.save("ints.npy", (h * 10).astype(np.int64))
+np.save("onerow.npy", h[:1])' && ok || bad "numpy could not write the height fields"
+"$bin" field --input points_2d.csv -o npy.csv --lift npy:good.npy --lift-ramp 0.3 && ok || bad "field --lift npy:good.npy"
+cmp -s npy.csv flat.csv && bad "--lift npy changed nothing" || ok
+"$bin" field --input points_2d.csv -o npy32.csv --lift npy:good32.npy && ok || bad "field --lift npy of float32"
+for f in nan ndim1 ndim3 ints onerow; do
+  check_bad "--lift npy:$f.npy" "lift npy:.*$f.npy" field --input points_2d.csv --lift "npy:$f.npy"
+done
 check_bad "--lift in 3D" "--dim 2" field --input points_3d.csv --lift plane:1,0
 check_bad "--lift beside --time" "give one of them" field --input points_2d.csv --lift plane:1,0 --time 1
 check_bad "--lift-ramp without --lift" "with --lift" field --input points_2d.csv --lift-ramp 1

@@ -70,6 +70,12 @@ SHARED = {
     "--lattice": ["start lattice"],
     "--frames": ["frames f, frame 0 included"],
     "--phase-step": ["phase step da in radians per frame, in (0, 2 pi]"],
+    "--width": ["image width in pixels"],
+    "--trace-time": ["trace time t of every", "rms |c| = 1: unit lengths"],
+    "--rk4-steps": ["rk4 steps per trace, each followed by gauss-newton reprojection"],
+    "--slope": ["slope sx,sy of the plane h = sx x + sy y"],
+    "--segments": ["trace points drawn and written after the start"],
+    "--image": ["side of the png in pixels"],
     "--drop-margin": ["drop mode: how far the start set reaches beyond the domain, in whole lattice spacings"],
 }
 # Names whose meaning moved: given, each is refused with a line naming the option to use instead.
@@ -136,7 +142,8 @@ help_all = run("--help-all")
 check(help_all.returncode == 0, "--help-all exits 0")
 parts = sections(help_all.stdout)
 expected = ["dfvn-sample " + s for s in ["sample", "field", "reproduce", "reproduce table1", "reproduce table2",
-                                          "reproduce cnj-study", "reproduce integration", "reproduce figure8", "reproduce constructions", "stats",
+                                          "reproduce cnj-study", "reproduce integration", "reproduce figure8", "reproduce constructions", "reproduce figure6",
+                                          "reproduce figure7", "reproduce figure9", "reproduce figure10", "stats",
                                           "animate"]]
 check(sorted(parts) == sorted(expected), f"--help-all has a section per subcommand: {sorted(parts)}")
 
