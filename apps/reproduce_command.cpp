@@ -286,7 +286,7 @@ struct ReproduceCommand : Subcommand {
         ->capture_default_str()
         ->check(kNoiseFrequency);
     c->add_option("--trace-time", constructions.trace_time,
-                  "Time t of every trace (accuracy and escapes); RMS |c| = 1, so about t length units, in (0, 100]")
+                  "Trace time t of every trace (accuracy and escapes), in (0, 100] (RMS |c| = 1: unit lengths)")
         ->capture_default_str()
         ->check(CLI::Range(1e-12, 100.0));
     c->add_option("--divergence-points", constructions.divergence_points,
