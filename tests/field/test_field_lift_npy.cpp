@@ -23,6 +23,7 @@
 
 #include "dfvn/field/diagnose.hpp"
 #include "dfvn/field/dfvn_field.hpp"
+#include "lift_projection.hpp"
 #include "test_support.hpp"
 
 namespace dfvn {
@@ -117,20 +118,7 @@ TEST_F(NpyLift, ProjectedThreeDimensionalFieldIsTheLiftedOne) {
   for (const NoiseBasis basis : kAllNoiseBases) {
     FieldOptions options{basis, 3.0};
     options.transform.lift = parse_lift("npy:" + path);
-    const DfvnField<2> field(11, options);
-    const auto noise3 = make_noise_functions<3>(basis, 11);
-    const auto height = make_height_field(options.transform.lift);
-    const double s = field.scale(), a = field.amplitude();
-    double worst = 0.0;
-    for (std::uint64_t k = 0; k < 2000; ++k) {
-      const Vec<2> x = testing::random_point<2>(9, k, -0.2, 1.2);
-      Vec<2> grad_h;
-      const double hx = height->height(x, grad_h);
-      const Vec<3> grad_f = a * noise3->evaluate(Vec<3>(s * x[0], s * x[1], s * hx)).gradient[0];
-      const Vec<3> projected = grad_f.cross(Vec<3>(-grad_h[0], -grad_h[1], 1.0));
-      const Vec<2> c = field.velocity(x);
-      worst = std::max(worst, (projected.head<2>() - c).norm() / std::max(1e-300, c.norm()));
-    }
+    const double worst = testing::largest_lift_projection_error(basis, options, -0.2, 1.2);
     EXPECT_LE(worst, 1e-12) << to_string(basis);
   }
 }
