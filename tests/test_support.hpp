@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <type_traits>
@@ -12,6 +14,19 @@
 #include "dfvn/noise/noise_functions.hpp"
 
 namespace dfvn::testing {
+
+// The ASan + UBSan build (scripts/build --sanitize) runs every test, the heaviest statistical sweeps on
+// fewer points: the sanitizers look for memory errors and undefined behaviour in the same code paths,
+// which run 8-10x slower there, and the Release pass keeps the full sizes and the same thresholds.
+#ifdef DFVN_SANITIZED_TESTS
+inline constexpr bool kSanitized = true;
+#else
+inline constexpr bool kSanitized = false;
+#endif
+// n in the Release build, n / divisor (at least 1) in the sanitizer build.
+constexpr std::uint64_t sanitizer_scaled(std::uint64_t n, std::uint64_t divisor) {
+  return kSanitized ? std::max<std::uint64_t>(1, n / divisor) : n;
+}
 
 template <int N>
 using Dim = std::integral_constant<int, N>;

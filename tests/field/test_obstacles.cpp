@@ -193,7 +193,7 @@ void traces_stay(FieldConstraint domain, Bound bound) {
   const Tracer<N> curl_tracer(curl, tc);
   std::vector<double> starts;
   int raw_outside = 0, in_obstacle = 0, curl_escaped = 0, curl_in_obstacle = 0;
-  for (std::uint64_t i = 0; starts.size() < 100000u * N; ++i) {
+  for (std::uint64_t i = 0; starts.size() < testing::sanitizer_scaled(100000, 10) * N; ++i) {
     const Vec<N> x = testing::random_point<N>(kSeed + 40, i, 0.0, 1.0);
     if (!field.contains(x)) continue;
     starts.insert(starts.end(), x.data(), x.data() + N);
@@ -214,9 +214,9 @@ void traces_stay(FieldConstraint domain, Bound bound) {
   trace_points(query, starts.data(), starts.size() / N, ends.data());
   int accepted_outside = 0;
   for (std::size_t i = 0; i < ends.size(); i += N) accepted_outside += !field.contains(Eigen::Map<const Vec<N>>(&ends[i]));
-  std::printf("%dD %s %s, 10^5 starts, time 0.1, 8 RK4 steps: DFVN ends inside an obstacle %d, outside the domain %d "
+  std::printf("%dD %s %s, %zu starts, time 0.1, 8 RK4 steps: DFVN ends inside an obstacle %d, outside the domain %d "
               "raw / %d through trace_points; curl noise (no reprojection) escapes %d (%d into an obstacle)\n",
-              N, to_string(domain).data(), to_string(bound).data(), in_obstacle, raw_outside, accepted_outside, curl_escaped,
+              N, to_string(domain).data(), to_string(bound).data(), starts.size() / N, in_obstacle, raw_outside, accepted_outside, curl_escaped,
               curl_in_obstacle);
   EXPECT_EQ(in_obstacle, 0);
   EXPECT_EQ(accepted_outside, 0);

@@ -7,6 +7,7 @@
 
 #include "dfvn/sampling/jitter.hpp"
 #include "dfvn/sampling/lattice.hpp"
+#include "test_support.hpp"
 
 namespace dfvn {
 namespace {
@@ -38,7 +39,7 @@ TEST(RadialDistribution, TooNarrowBinsAreRefusedAndAcceptedOnesAreFinite) {
 // correction). Each bin is compared with its Poisson standard error (pairs counted twice).
 TEST(RadialDistribution, UniformRandomPointsGiveOne) {
   for (int dimension : {2, 3, 5, 7}) {
-    const std::uint64_t n = dimension <= 3 ? 20000 : 60000;
+    const std::uint64_t n = testing::sanitizer_scaled(dimension <= 3 ? 20000 : 60000, 4);
     const PointSet p = uniform_random_points(dimension, n, Box{0.0, 1.0}, 77 + dimension, 2);
     RdfOptions o;
     o.bins = 20;
