@@ -56,7 +56,7 @@ void add_options(CLI::App& app, Options& o) {
                           ->check(CLI::Range(2, 1 << 30));
   app.add_option("-n,--count", o.count,
                  "Points per set instead of --grid: cnj and jitter use the K whose K^N is nearest, random and sobol\n"
-                 "make exactly COUNT")
+                 "make exactly COUNT. Not given: --grid")
       ->check(CLI::Range(std::uint64_t{2}, std::uint64_t{1} << 40))
       ->excludes(grid);
   app.add_option("--methods", o.methods,
@@ -72,7 +72,7 @@ void add_options(CLI::App& app, Options& o) {
                        ->capture_default_str();
   app.add_option("--points", o.points_dir,
                  "Write each method's points to DIR/<method>.<format>, one file written by every rank at once\n"
-                 "(MPI-IO); not '-'");
+                 "(MPI-IO); not '-'. Not given: no point files");
   o.format_option = app.add_option("--format", o.format, "Point file format (of --points): npy, bin, dat or csv, as in sample")
                         ->capture_default_str()
                         ->check(CLI::IsMember({"csv", "npy", "dat", "bin"}));

@@ -120,5 +120,29 @@ run_mpi 1 --help >"$work/help" 2>&1
 for option in --dim --grid --count --methods --slabs --points --format --no-timing --seed --threads --domain; do
   grep -q -- "$option" "$work/help" && ok || bad "--help does not name $option"
 done
+# The bash completion (scripts/dfvn-sample-completion.bash) reads dfvn-sample-mpi's own --help.
+if [[ -n ${COMPLETION:-} && -r /usr/share/bash-completion/bash_completion ]]; then
+  complete_mpi() {
+    (
+      source /usr/share/bash-completion/bash_completion
+      source "$COMPLETION"
+      local line="$mpi $1"
+      COMP_LINE=$line
+      COMP_POINT=${#line}
+      read -r -a COMP_WORDS <<<"$line"
+      [[ $line == *" " ]] && COMP_WORDS+=("")
+      COMP_CWORD=$((${#COMP_WORDS[@]} - 1))
+      COMPREPLY=()
+      _dfvn_sample dfvn-sample-mpi "${COMP_WORDS[COMP_CWORD]}" "${COMP_WORDS[COMP_CWORD - 1]}"
+      printf ' %s ' "${COMPREPLY[@]}"
+    )
+  }
+  [[ $(complete_mpi "--sl") == *" --slabs "* ]] && ok || bad "completion of --sl: '$(complete_mpi "--sl")'"
+  [[ $(complete_mpi "--format ") == *" npy "*" "* && $(complete_mpi "--format ") == *" bin "* ]] && ok ||
+    bad "completion of --format: '$(complete_mpi "--format ")'"
+  [[ $(complete_mpi "") != *" sample "* ]] && ok || bad "completion offers subcommands to dfvn-sample-mpi"
+else
+  bad "no COMPLETION script or no bash-completion"
+fi
 
 finish cli_mpi
