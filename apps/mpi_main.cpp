@@ -170,9 +170,7 @@ int run(Options& o, int rank, MPI_Comm comm) {
   int ranks = 1;
   MPI_Comm_size(comm, &ranks);
   try {
-    o.config.validate();
-    if (const std::string why = dfvn::mpi_refusal(o.config); !why.empty()) throw std::invalid_argument(why);
-    dfvn::mpi_slab_count(o.config, o.config.stream_slabs, ranks);
+    dfvn::check_mpi_run(o.config, o.config.stream_slabs, ranks);
   } catch (const std::exception&) {
     if (rank == 0) throw;
     throw dfvn::ReportedElsewhere();
@@ -221,6 +219,7 @@ int main(int argc, char** argv) {
                "point file written by all ranks (MPI-IO), and the one-process run's point files and statistics CSV\n"
                "byte for byte, whatever the number of ranks or threads.",
                kMpiProgram};
+  app.set_version_flag("--version", std::string(kMpiProgram) + " " + DFVN_VERSION);
   Options options;
   add_options(app, options);
   dfvn::remove_temporaries_on_signals();
@@ -231,6 +230,8 @@ int main(int argc, char** argv) {
     configure(options);
     configured = true;
   } catch (const CLI::CallForHelp& e) {
+    if (rank == 0) status = app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     if (rank == 0) status = app.exit(e);
   } catch (const CLI::ParseError& e) {
     if (rank == 0) std::fprintf(stderr, "%s: error: %s (run with --help for the options)\n", kMpiProgram, e.what());

@@ -7,6 +7,7 @@
 #   lib/pkgconfig/dfvn.pc                        pkg-config --cflags --libs dfvn
 #   share/dfvn/                                  DFVN_DATA_DIR: the plot programs
 #   share/man/man1/dfvn-sample.1                 from --help-all (every subcommand), when help2man is found
+#   share/man/man1/dfvn-sample-mpi.1             from its --help, when help2man is found and it is built
 #   share/bash-completion/completions/dfvn-sample (and dfvn-sample-mpi, the same file, when that is built)
 # Every path is relative to the prefix, so the tree may be installed anywhere (--prefix) and moved.
 include(CMakePackageConfigHelpers)
@@ -133,6 +134,18 @@ if(DFVN_HELP2MAN)
     COMMENT "Generating the man page dfvn-sample.1 with help2man")
   add_custom_target(dfvn-sample-man ALL DEPENDS ${dfvn_man_page})
   install(FILES ${dfvn_man_page} DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
+  if(TARGET dfvn-sample-mpi)  # its own page, from its --help
+    set(dfvn_mpi_man_page ${CMAKE_CURRENT_BINARY_DIR}/dfvn-sample-mpi.1)
+    add_custom_command(
+      OUTPUT ${dfvn_mpi_man_page}
+      COMMAND ${DFVN_HELP2MAN} --no-info --no-discard-stderr
+              "--name=dfvn-sample sample --stream over MPI ranks, with the one-process bytes"
+              --output=${dfvn_mpi_man_page} $<TARGET_FILE:dfvn-sample-mpi>
+      DEPENDS dfvn-sample-mpi
+      COMMENT "Generating the man page dfvn-sample-mpi.1 with help2man")
+    add_custom_target(dfvn-sample-mpi-man ALL DEPENDS ${dfvn_mpi_man_page})
+    install(FILES ${dfvn_mpi_man_page} DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
+  endif()
 else()
   message(STATUS "help2man not found: no man page (apt-get install help2man)")
 endif()

@@ -13,6 +13,7 @@
 
 #include <fmt/format.h>
 
+#include "dfvn/core/message_text.hpp"
 #include "dfvn/core/stopwatch.hpp"
 #include "dfvn/experiment/streamed_sampling.hpp"
 #include "dfvn/mpi/mpi_exact.hpp"
@@ -265,7 +266,10 @@ std::vector<std::pair<std::uint64_t, double>> nearest_distances(const Ranks& ran
   const std::uint64_t queries = owned.size() / record;
   const int s0 = ranks.first_slab(ranks.rank, slabs), s1 = ranks.first_slab(ranks.rank + 1, slabs);
   const double range_lo = edge(s0), range_hi = edge(s1);
-  std::vector<double> d;
+  // d: each owned point's distance; pending: the points whose distance is not yet known to be exact.
+  std::vector<double> d(queries, std::numeric_limits<double>::quiet_NaN());
+  std::vector<std::uint64_t> pending(queries);
+  for (std::uint64_t q = 0; q < queries; ++q) pending[q] = q;
   double h = domain.side / std::pow(static_cast<double>(total), 1.0 / n);
   for (int attempt = 0;; ++attempt) {
     // The halo: from ranks r -+ k the points within h of this rank's range, k = 1, 2, ... while any rank
@@ -294,29 +298,75 @@ std::vector<std::pair<std::uint64_t, double>> nearest_distances(const Ranks& ran
     const double lo = range_lo - h, hi = range_hi + h;
     const bool all_below = lo <= zmin, all_above = hi > zmax;
     double needed = h;
-    if (queries > 0) {
+    std::vector<std::uint64_t> still;
+    if (!pending.empty()) {
+      // The set: the pending points first, then every other loaded point (first attempt) or those within
+      // the windows [z - d, z + d] of the pending points' last distances d (later attempts: a pending
+      // point's nearest neighbour is no farther than the point found before, which is still loaded, so
+      // it lies in its window; only the few points near the range's edges are measured again).
+      std::vector<std::pair<double, double>> windows;
+      if (attempt > 0) {
+        for (std::uint64_t q : pending) {
+          const double z = owned[q * record + n], reach = d[q] * (1.0 + 1e-6) + 1e-9 * domain.side;
+          windows.emplace_back(std::isfinite(reach) ? z - reach : -std::numeric_limits<double>::infinity(),
+                               std::isfinite(reach) ? z + reach : std::numeric_limits<double>::infinity());
+        }
+        std::sort(windows.begin(), windows.end());
+        std::vector<std::pair<double, double>> merged;
+        for (const auto& w : windows)
+          if (!merged.empty() && w.first <= merged.back().second) merged.back().second = std::max(merged.back().second, w.second);
+          else merged.push_back(w);
+        windows = std::move(merged);
+      }
+      const auto in_windows = [&](double z) {
+        if (attempt == 0) return true;
+        auto it = std::upper_bound(windows.begin(), windows.end(), std::make_pair(z, std::numeric_limits<double>::infinity()));
+        return it != windows.begin() && z <= std::prev(it)->second;
+      };
       PointSet set{n, {}, domain};
-      set.coordinates.reserve((owned.size() + halo.size()) / record * n);
-      for (const std::vector<double>* part : std::initializer_list<const std::vector<double>*>{&owned, &halo})
-        for (std::size_t k = 0; k < part->size(); k += record)
-          set.coordinates.insert(set.coordinates.end(), part->data() + k + 1, part->data() + k + record);
+      std::vector<char> is_pending(queries, 0);
+      const auto add = [&](const double* r) { set.coordinates.insert(set.coordinates.end(), r + 1, r + record); };
+      for (std::uint64_t q : pending) {
+        is_pending[q] = 1;
+        add(owned.data() + q * record);
+      }
+      for (std::uint64_t q = 0; q < queries; ++q)
+        if (!is_pending[q] && in_windows(owned[q * record + n])) add(owned.data() + q * record);
+      for (std::size_t k = 0; k < halo.size(); k += record)
+        if (in_windows(halo[k + n])) add(halo.data() + k);
       if (set.size() < 2) {
         if (all_below && all_above) throw std::invalid_argument("the statistics need at least 2 points");
         needed = 2.0 * h;
+        still = pending;
       } else {
-        d = nearest_neighbour_distances(set, config.knn, config.threads);
+        // Few pending points (later attempts): each against every point of the set, by distance_between, the
+        // function through which the KD-trees report their distances too (the same bits); else the KD-tree.
+        std::vector<double> found;
+        if (static_cast<double>(pending.size()) * static_cast<double>(set.size()) <= 5e7) {
+          found.assign(pending.size(), std::numeric_limits<double>::infinity());
+          for (std::size_t j = 0; j < pending.size(); ++j)
+            for (std::size_t k = 0; k < set.size(); ++k)
+              if (k != j) found[j] = std::min(found[j], distance_between(set, j, k));
+        } else {
+          found = nearest_neighbour_distances(set, config.knn, config.threads);
+        }
         // The one-process stream's rule (streamed_sampling.cpp, measure_bucket).
         constexpr double kSlack = 1e-9;
         const double width = hi - lo;
-        for (std::uint64_t q = 0; q < queries; ++q) {
-          const double z = set.point(q)[n - 1];
+        for (std::size_t j = 0; j < pending.size(); ++j) {
+          const std::uint64_t q = pending[j];
+          d[q] = found[j];
+          const double z = owned[q * record + n];
           const double margin = std::min(all_below ? std::numeric_limits<double>::infinity() : z - lo,
                                          all_above ? std::numeric_limits<double>::infinity() : hi - z);
-          if (!(d[q] <= margin - kSlack * width))
+          if (!(d[q] <= margin - kSlack * width)) {
             needed = std::max(needed, (h + d[q] - margin) * (1.0 + 1e-6) + 2.0 * kSlack * width);
+            still.push_back(q);
+          }
         }
       }
     }
+    pending = std::move(still);
     double most = 0.0;
     MPI_Allreduce(&needed, &most, 1, MPI_DOUBLE, MPI_MAX, ranks.comm);
     if (most <= h) break;
@@ -465,16 +515,36 @@ int mpi_slab_count(const SampleConfig& config, int requested, int ranks) {
   return static_cast<int>(std::min<std::uint64_t>(static_cast<std::uint64_t>(wanted), fewest_points));
 }
 
+double mpi_rank_peak_bytes(const SampleConfig& config, int slabs, int ranks) {
+  const int slabs_per_rank = (slabs + ranks - 1) / ranks;
+  double peak = 0.0;
+  for (Method m : config.methods) {
+    const MethodPlan plan = plan_method(config, m);
+    const double rows = static_cast<double>(std::min<std::uint64_t>(
+        plan.requested, slab_rows(config, plan, slabs) * static_cast<std::uint64_t>(slabs_per_rank)));
+    peak = std::max(peak, rows * (56.0 * config.dimension + 64.0));
+  }
+  return peak;
+}
+
+int check_mpi_run(const SampleConfig& config, int requested_slabs, int ranks) {
+  config.validate();
+  if (const std::string why = mpi_refusal(config); !why.empty()) throw std::invalid_argument(why);
+  const int count = mpi_slab_count(config, requested_slabs, ranks);
+  const double need = mpi_rank_peak_bytes(config, count, ranks), limit = memory_limit_bytes(config);
+  if (need > limit)
+    throw std::invalid_argument(fmt::format("a rank's share of the points needs about {} of memory (limit {}): run on more "
+                                            "ranks (or raise --max-memory)",
+                                            byte_size(need), byte_size(limit)));
+  return count;
+}
+
 std::vector<MethodResult> run_mpi_sampling(MPI_Comm comm, const SampleConfig& config, int slabs,
                                            const std::function<std::string(Method)>& point_path, PointFormat format,
                                            int fail_rank) {
   const Ranks ranks(comm);
   int count = 0;
-  run_everywhere(comm, [&] {
-    config.validate();
-    if (const std::string why = mpi_refusal(config); !why.empty()) throw std::invalid_argument(why);
-    count = mpi_slab_count(config, slabs, ranks.size);
-  });
+  run_everywhere(comm, [&] { count = check_mpi_run(config, slabs, ranks.size); });
   std::vector<MethodResult> results;
   bool failed_once = false;
   for (Method m : config.methods) {

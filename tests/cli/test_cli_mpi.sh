@@ -99,6 +99,9 @@ expect_mpi_error "halton" 2 "not halton" --dim 4 --grid 6 --methods halton -o "$
 expect_mpi_error "ball" 2 "--domain torus or cube" --dim 4 --grid 6 --methods cnj --domain ball -o "$work/bad/s.csv"
 expect_mpi_error "points to stdout" 2 "needs a directory" --dim 4 --grid 6 --methods cnj --points - --no-stats
 expect_mpi_error "more slabs than points" 2 "more slabs than points" --dim 2 -n 4 --methods sobol --slabs 8 -o "$work/bad/s.csv"
+# A rank's share past the memory limit (the one-process slab of one layer fits: 7D K = 8, 8 slabs).
+expect_mpi_error "a rank's share past --max-memory" 2 "run on more ranks" \
+  --dim 7 --grid 8 --methods jitter --slabs 8 --max-memory 0.2 -o "$work/bad/s.csv"
 touch "$work/bad/file"
 expect_mpi_error "unwritable points" 3 "" --dim 4 --grid 6 --methods cnj --points "$work/bad/file/pts" -o "$work/bad/s.csv"
 expect_mpi_error "unwritable stats" 2 "" --dim 4 --grid 6 --methods cnj -o "$work/bad/file/s.csv"
