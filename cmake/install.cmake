@@ -1,12 +1,14 @@
 # What `cmake --install` puts under the prefix:
 #   bin/dfvn-sample
+#   bin/dfvn-sample-mpi                          only when built (-DDFVN_MPI=ON)
 #   lib/libdfvn.so*                              (CMAKE_INSTALL_LIBDIR)
 #   include/dfvn/dfvn.hpp, include/dfvn/<concept>/*.hpp   the public headers (an explicit list below)
 #   lib/cmake/dfvn/                              find_package(dfvn) -> dfvn::dfvn
 #   lib/pkgconfig/dfvn.pc                        pkg-config --cflags --libs dfvn
 #   share/dfvn/                                  DFVN_DATA_DIR: the plot programs
 #   share/man/man1/dfvn-sample.1                 from --help-all (every subcommand), when help2man is found
-#   share/bash-completion/completions/dfvn-sample
+#   share/man/man1/dfvn-sample-mpi.1             from its --help, when help2man is found and it is built
+#   share/bash-completion/completions/dfvn-sample (and dfvn-sample-mpi, the same file, when that is built)
 # Every path is relative to the prefix, so the tree may be installed anywhere (--prefix) and moved.
 include(CMakePackageConfigHelpers)
 
@@ -19,6 +21,10 @@ file(RELATIVE_PATH dfvn_bin_to_lib /${CMAKE_INSTALL_BINDIR} /${CMAKE_INSTALL_LIB
 set_target_properties(dfvn-sample PROPERTIES INSTALL_RPATH "$ORIGIN/${dfvn_bin_to_lib}")
 
 install(TARGETS dfvn-sample RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+if(TARGET dfvn-sample-mpi)
+  set_target_properties(dfvn-sample-mpi PROPERTIES INSTALL_RPATH "$ORIGIN/${dfvn_bin_to_lib}")
+  install(TARGETS dfvn-sample-mpi RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()
 install(TARGETS dfvn EXPORT dfvnTargets
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
@@ -128,9 +134,25 @@ if(DFVN_HELP2MAN)
     COMMENT "Generating the man page dfvn-sample.1 with help2man")
   add_custom_target(dfvn-sample-man ALL DEPENDS ${dfvn_man_page})
   install(FILES ${dfvn_man_page} DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
+  if(TARGET dfvn-sample-mpi)  # its own page, from its --help
+    set(dfvn_mpi_man_page ${CMAKE_CURRENT_BINARY_DIR}/dfvn-sample-mpi.1)
+    add_custom_command(
+      OUTPUT ${dfvn_mpi_man_page}
+      COMMAND ${DFVN_HELP2MAN} --no-info --no-discard-stderr
+              "--name=dfvn-sample sample --stream over MPI ranks, with the one-process bytes"
+              --output=${dfvn_mpi_man_page} $<TARGET_FILE:dfvn-sample-mpi>
+      DEPENDS dfvn-sample-mpi
+      COMMENT "Generating the man page dfvn-sample-mpi.1 with help2man")
+    add_custom_target(dfvn-sample-mpi-man ALL DEPENDS ${dfvn_mpi_man_page})
+    install(FILES ${dfvn_mpi_man_page} DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
+  endif()
 else()
   message(STATUS "help2man not found: no man page (apt-get install help2man)")
 endif()
 
 install(FILES scripts/dfvn-sample-completion.bash DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions
         RENAME dfvn-sample)
+if(TARGET dfvn-sample-mpi)
+  install(FILES scripts/dfvn-sample-completion.bash DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions
+          RENAME dfvn-sample-mpi)
+endif()

@@ -1,4 +1,6 @@
-# bash completion for dfvn-sample (installed as share/bash-completion/completions/dfvn-sample).
+# bash completion for dfvn-sample (installed as share/bash-completion/completions/dfvn-sample) and
+# dfvn-sample-mpi (-DDFVN_MPI=ON; installed as .../completions/dfvn-sample-mpi, the same file), which has
+# no subcommands.
 # Options and their allowed values are read from the program's own --help, so they always match the
 # installed version: `--noise <TAB>` offers what `--noise TEXT:{a,b,c}` lists.
 
@@ -6,6 +8,10 @@
 _dfvn_sample_help() {
   local program=$1
   shift
+  if [[ ${program##*/} == dfvn-sample-mpi ]]; then
+    "$program" --help 2>/dev/null
+    return
+  fi
   (($#)) || set -- sample
   "$program" "$@" --help 2>/dev/null
 }
@@ -18,6 +24,7 @@ _dfvn_sample() {
   # Subcommands: the first word may name one of the top level's, the next one of its own, and so on.
   local -a path=()
   local i subcommands="sample field stats reproduce animate"
+  [[ ${program##*/} == dfvn-sample-mpi ]] && subcommands=""
   for ((i = 1; i < cword; i++)); do
     [[ " $subcommands " == *" ${words[i]} "* ]] || break
     path+=("${words[i]}")
@@ -58,4 +65,4 @@ _dfvn_sample() {
   else
     COMPREPLY=($(compgen -W "$(grep -oE -- '^ +(-[a-zA-Z],)?--[a-z][a-z0-9-]*(,--[a-z][a-z0-9-]*)*' <<<"$help" | sed 's/^ *//; s/,/ /g')" -- "$cur"))
   fi
-} && complete -F _dfvn_sample dfvn-sample
+} && complete -F _dfvn_sample dfvn-sample dfvn-sample-mpi

@@ -46,6 +46,14 @@ echo "ok: the tree"
 version=$(env -u LD_LIBRARY_PATH "$prefix/bin/dfvn-sample" --version </dev/null)
 [[ $version == "dfvn-sample "[0-9]* ]] || fail "--version printed '$version'"
 echo "ok: $version"
+# dfvn-sample-mpi, installed when built (-DDFVN_MPI=ON), finds libdfvn the same way.
+if [[ -e $prefix/bin/dfvn-sample-mpi ]]; then
+  version=$(env -u LD_LIBRARY_PATH "$prefix/bin/dfvn-sample-mpi" --version </dev/null)
+  [[ $version == "dfvn-sample-mpi "[0-9]* ]] || fail "dfvn-sample-mpi --version printed '$version'"
+  [[ $DFVN_MAN_PAGE != 1 || -e $prefix/share/man/man1/dfvn-sample-mpi.1 ]] || fail "no man page of dfvn-sample-mpi"
+  [[ -e $prefix/share/bash-completion/completions/dfvn-sample-mpi ]] || fail "no completion of dfvn-sample-mpi"
+  echo "ok: $version"
+fi
 
 if [[ $DFVN_MAN_PAGE == 1 ]]; then
   man_page=$prefix/share/man/man1/dfvn-sample.1
