@@ -209,9 +209,9 @@ struct SampleCommand : Subcommand {
                   "Make and measure the sets in slabs (cnj, jitter, random, sobol): the lattice cut along its last\n"
                   "axis (the slowest in the point order) into --slabs slabs, each generated, appended to --points\n"
                   "and measured with a halo from its neighbours; memory O(slab + halo), temporaries in $TMPDIR; the\n"
-                  "same bytes and statistics as in memory. Chosen by itself (with a note) when the sets would exceed\n"
-                  "--max-memory and the run can stream. Not with pds, jitter-matched, halton, lhs, --domain ball,\n"
-                  "--on, --periodic, --rdf or --sets > 1");
+                  "same bytes, statistics and --rdf as in memory (--periodic: the halo wraps around the torus).\n"
+                  "Chosen by itself (with a note) when the sets would exceed --max-memory and the run can stream.\n"
+                  "Not with pds, jitter-matched, halton, lhs, --domain ball, --on or --sets > 1");
     cmd->add_option("--slabs", config.stream_slabs,
                     "Slabs of --stream: a divisor of K for the lattice methods; 0 = the fewest whose slabs hold at most\n"
                     "2^22 points and fit --max-memory")
@@ -393,9 +393,14 @@ struct SampleCommand : Subcommand {
     const auto results = dfvn::run_streamed_sampling(config, config.stream_slabs, path, point_format, reporter->callback());
     reporter->complete();
     std::string stats = dfvn::stats_csv_header();
-    for (const auto& r : results) stats += dfvn::stats_csv_row(config, r, !no_timing);
+    std::string rdf = dfvn::rdf_csv_header();
+    for (const auto& r : results) {
+      stats += dfvn::stats_csv_row(config, r, !no_timing);
+      rdf += dfvn::rdf_csv_rows(config, r);
+    }
     if (!json_path.empty())
       dfvn::write_file_atomically(json_path, dfvn::sampling_json(config, {{config.seed, results}}, !no_timing));
+    if (!rdf_path.empty()) dfvn::write_file_atomically(rdf_path, rdf);
     if (!no_stats) dfvn::write_file_atomically(stats_path, stats);
   }
 

@@ -19,6 +19,8 @@
 #include "dfvn/io/atomic_file.hpp"
 #include "dfvn/sampling/jitter.hpp"
 #include "dfvn/stats/distance_scale.hpp"
+#include "dfvn/stats/periodic_neighbours.hpp"
+#include "dfvn/stats/radial_distribution.hpp"
 
 namespace dfvn {
 
@@ -266,7 +268,8 @@ class DisplacementStream {
 class NearestStream {
  public:
   NearestStream(const SampleConfig& config, const TemporaryDirectory& dir, int buckets, const Box& domain)
-      : config_(config), n_(config.dimension), domain_(domain), runs_(dir.file("distance_runs")) {
+      : config_(config), n_(config.dimension), periodic_(config.periodic_statistics), domain_(domain),
+        runs_(dir.file("distance_runs")) {
     for (int b = 0; b < buckets; ++b) {
       buckets_.push_back(std::make_unique<TemporaryFile>(dir.file(fmt::format("bucket{}", b))));
       pairs_.push_back(std::make_unique<TemporaryFile>(dir.file(fmt::format("distances{}", b))));
@@ -361,18 +364,58 @@ class NearestStream {
     return summarize_nearest_neighbours(total_, sum, order_statistics(runs_), domain_.volume(n_), n_);
   }
 
- private:
-  // Loads bucket b and every point within h of it, measures, and writes bucket b's distances if every one
-  // is certainly the nearest (closer than the loaded region's edge). Returns the halo that holds every
-  // distance found (at most h when they were written): a point's true neighbour is no farther than the
-  // one found.
-  double measure_bucket(int b, double h) {
-    const double lo = edge(b) - h, hi = edge(b + 1) + h;
-    const bool all_below = lo <= zmin_, all_above = hi > zmax_;
-    PointSet set{n_, {}, domain_};
-    std::vector<std::uint64_t> index;
-    const std::size_t record = static_cast<std::size_t>(n_) + 1;
+  // The RDF of the whole set (after measure): each bucket's query points (RdfQueries, chosen by output
+  // row as in memory) counted against the bucket and a halo a little wider than r_max, which holds every
+  // point within r_max of them (around the torus when periodic_: the halo wraps, over as many buckets as
+  // r_max spans). The pair sums are exact, so the curve is the in-memory run's to the bit.
+  RdfCurve radial_distribution(const RdfOptions& options, std::uint64_t seed, const FractionProgress& progress) {
+    const RdfPlan plan = plan_radial_distribution(n_, domain_, total_, options);
+    const RdfQueries is_query(options, seed, total_);
+    RdfPairSums sums = plan.empty_sums();
     std::uint64_t queries = 0;
+    const double halo = plan.r_max * (1.0 + 1e-6) + 1e-9 * domain_.side;
+    for (auto& b : buckets_) b->rewind();
+    for (int b = 0; b < static_cast<int>(buckets_.size()); ++b) {
+      if (counts_[static_cast<std::size_t>(b)] == 0) continue;
+      const LoadedBucket l = load_bucket(b, halo);
+      if (l.set.size() > std::numeric_limits<std::uint32_t>::max())
+        throw std::invalid_argument("--stream: a slab with its RDF halo holds more than 2^32 points; raise --slabs");
+      std::vector<std::uint32_t> rows;
+      for (std::uint64_t q = 0; q < l.queries; ++q)
+        if (is_query(l.index[q])) rows.push_back(static_cast<std::uint32_t>(q));
+      if (!rows.empty()) count_rdf_pairs(l.set, rows, plan, sums, config_.threads);
+      queries += rows.size();
+      if (progress) progress(static_cast<double>(b + 1) / static_cast<double>(buckets_.size()));
+    }
+    return finish_radial_distribution(plan, sums, queries);
+  }
+
+ private:
+  // Bucket b's points (rows 0 .. queries - 1 of set, in file order) and every other point whose last
+  // coordinate lies in [lo, hi) = [edge(b) - h, edge(b + 1) + h), on the torus (periodic_) also shifted by
+  // a side: the halo wraps, and the first and last buckets are neighbours. `whole`: every point of the set
+  // is loaded (then the halo has no edge).
+  struct LoadedBucket {
+    PointSet set;
+    std::vector<std::uint64_t> index;  // the output's row of each of set's rows
+    std::uint64_t queries = 0;
+    double lo = 0.0, hi = 0.0;
+    bool whole_below = false, whole_above = false;  // no point lies below lo / at or above hi unloaded
+  };
+  LoadedBucket load_bucket(int b, double h) {
+    LoadedBucket l;
+    l.lo = edge(b) - h;
+    l.hi = edge(b + 1) + h;
+    const bool wraps_whole = periodic_ && l.hi - l.lo >= domain_.side;
+    l.whole_below = wraps_whole || (!periodic_ && l.lo <= zmin_);
+    l.whole_above = wraps_whole || (!periodic_ && l.hi > zmax_);
+    l.set = PointSet{n_, {}, domain_};
+    const std::size_t record = static_cast<std::size_t>(n_) + 1;
+    const double lo = l.lo, hi = l.hi, side = domain_.side;
+    const auto in_halo = [&](double z) {
+      if (wraps_whole || (z >= lo && z < hi)) return true;
+      return periodic_ && ((z + side >= lo && z + side < hi) || (z - side >= lo && z - side < hi));
+    };
     std::vector<double> block;
     auto load = [&](int c, bool everything) {
       constexpr std::uint64_t kRecords = 1 << 15;
@@ -384,45 +427,69 @@ class NearestStream {
                                                        block.size() * sizeof(double));
         for (std::uint64_t k = 0; k < n; ++k) {
           const double* r = block.data() + k * record;
-          const double z = r[n_];
-          if (!everything && !(z >= lo && z < hi)) continue;
+          if (!everything && !in_halo(r[n_])) continue;
           std::uint64_t i;
           std::memcpy(&i, r, sizeof i);
-          index.push_back(i);
-          set.coordinates.insert(set.coordinates.end(), r + 1, r + 1 + n_);
+          l.index.push_back(i);
+          l.set.coordinates.insert(l.set.coordinates.end(), r + 1, r + 1 + n_);
         }
       }
     };
-    const int reach = static_cast<int>(std::ceil(h / (domain_.side / static_cast<double>(buckets_.size())))) + 1;
+    // The buckets within reach of b (around the torus when periodic_), each once.
+    const int count = static_cast<int>(buckets_.size());
+    const double width = domain_.side / static_cast<double>(count);
+    const int reach = static_cast<int>(std::min<double>(count, std::ceil(h / width) + 1.0));
+    std::vector<char> near(static_cast<std::size_t>(count), 0);
+    for (int d = 1; d <= reach; ++d)
+      for (int c : {b - d, b + d}) {
+        if (periodic_) c = ((c % count) + count) % count;
+        if (c >= 0 && c < count && c != b) near[static_cast<std::size_t>(c)] = 1;
+      }
     std::uint64_t expected = counts_[static_cast<std::size_t>(b)];
-    const double halo_share = std::min(1.0, h / (domain_.side / static_cast<double>(buckets_.size())));
-    for (int c = std::max(0, b - reach); c <= std::min(static_cast<int>(buckets_.size()) - 1, b + reach); ++c)
-      if (c != b && std::abs(c - b) == 1) expected += static_cast<std::uint64_t>(halo_share * static_cast<double>(counts_[static_cast<std::size_t>(c)]));
-    set.coordinates.reserve(expected * static_cast<std::uint64_t>(n_));
-    index.reserve(expected);
+    const double halo_share = std::min(1.0, h / width);
+    for (int c = 0; c < count; ++c)
+      if (near[static_cast<std::size_t>(c)])
+        expected += static_cast<std::uint64_t>(std::min(1.0, halo_share / 2.0) * static_cast<double>(counts_[static_cast<std::size_t>(c)]));
+    l.set.coordinates.reserve(expected * static_cast<std::uint64_t>(n_));
+    l.index.reserve(expected);
     load(b, true);
-    queries = index.size();
-    for (int c = std::max(0, b - reach); c <= std::min(static_cast<int>(buckets_.size()) - 1, b + reach); ++c)
-      if (c != b) load(c, false);
+    l.queries = l.index.size();
+    for (int c = 0; c < count; ++c)
+      if (near[static_cast<std::size_t>(c)]) load(c, false);
+    return l;
+  }
+
+  // Loads bucket b and every point within h of it, measures, and writes bucket b's distances if every one
+  // is certainly the nearest (closer than the loaded region's edge). Returns the halo that holds every
+  // distance found (at most h when they were written): a point's true neighbour is no farther than the
+  // one found. On the torus (periodic_) minimum-image distances, as periodic_nearest_neighbour_distances
+  // measures the whole set: the halo's points keep their coordinates, so each distance is the same bits.
+  double measure_bucket(int b, double h) {
+    LoadedBucket l = load_bucket(b, h);
+    const std::uint64_t queries = l.queries;
+    const PointSet& set = l.set;
     if (set.size() < 2) {
-      if (all_below && all_above) throw std::invalid_argument("the statistics need at least 2 points");
+      if (l.whole_below && l.whole_above) throw std::invalid_argument("the statistics need at least 2 points");
       return 2.0 * h;
     }
-    const std::vector<double> d = nearest_neighbour_distances(set, config_.knn, config_.threads);
+    const std::vector<double> d = periodic_ ? periodic_nearest_neighbour_distances(set, config_.threads)
+                                            : nearest_neighbour_distances(set, config_.knn, config_.threads);
     // The margins carry a relative slack far above the rounding of an edge and a difference.
     constexpr double kSlack = 1e-9;
-    const double width = hi - lo;
+    const double width = l.hi - l.lo;
     double needed = h;
     for (std::uint64_t q = 0; q < queries; ++q) {
+      // A point outside [lo, hi) (and, on the torus, its images) is at least this far from the query in
+      // its last coordinate.
       const double z = set.point(q)[n_ - 1];
-      const double margin = std::min(all_below ? std::numeric_limits<double>::infinity() : z - lo,
-                                     all_above ? std::numeric_limits<double>::infinity() : hi - z);
+      const double margin = std::min(l.whole_below ? std::numeric_limits<double>::infinity() : z - l.lo,
+                                     l.whole_above ? std::numeric_limits<double>::infinity() : l.hi - z);
       if (!(d[q] <= margin - kSlack * width))  // the halo that would hold this point's neighbour, with room
         needed = std::max(needed, (h + d[q] - margin) * (1.0 + 1e-6) + 2.0 * kSlack * width);
     }
     if (needed > h) return needed;
     std::vector<std::pair<std::uint64_t, double>> pairs(queries);
-    for (std::uint64_t q = 0; q < queries; ++q) pairs[q] = {index[q], d[q]};
+    for (std::uint64_t q = 0; q < queries; ++q) pairs[q] = {l.index[q], d[q]};
     std::sort(pairs.begin(), pairs.end());
     std::vector<double> out(2 * queries);
     for (std::uint64_t q = 0; q < queries; ++q) {
@@ -436,6 +503,7 @@ class NearestStream {
 
   const SampleConfig& config_;
   int n_;
+  bool periodic_;
   Box domain_;
   std::vector<std::unique_ptr<TemporaryFile>> buckets_;
   std::vector<std::uint64_t> counts_;
@@ -573,6 +641,15 @@ MethodResult run_streamed_method(const SampleConfig& config, const MethodPlan& p
   result.nearest = nearest->summarize(slabs.rows);
   result.measured = true;
   result.seconds_stats = stopwatch.seconds();
+  if (config.compute_rdf) {
+    const std::string rdf_stage = name + " rdf";
+    if (progress) progress(rdf_stage, 0.0);
+    RdfOptions rdf = config.rdf;
+    rdf.periodic = config.periodic_statistics;
+    result.rdf = nearest->radial_distribution(rdf, config.seed, [&](double f) {
+      if (progress) progress(rdf_stage, f);
+    });
+  }
   return result;
 }
 
@@ -580,8 +657,6 @@ MethodResult run_streamed_method(const SampleConfig& config, const MethodPlan& p
 
 std::string stream_refusal(const SampleConfig& config) {
   if (config.on != Surface::none) return "--stream makes point sets in a cube, not --on sphere";
-  if (config.periodic_statistics) return "--stream measures Euclidean distances in the box, not --periodic";
-  if (config.compute_rdf) return "--stream computes no RDF: drop --rdf";
   for (Method m : config.methods) {
     if (m == Method::pds || m == Method::jitter_matched || m == Method::halton || m == Method::lhs)
       return fmt::format("--stream makes the index-addressable sets cnj, jitter, random and sobol in slabs, not {}{}",
@@ -627,9 +702,16 @@ int stream_slab_count(const SampleConfig& config, int requested) {
 double streamed_peak_bytes(const SampleConfig& config, int slabs) {
   double peak = 0.0;
   for (Method m : config.methods) {
-    const double points = static_cast<double>(plan_method(config, m).requested) / slabs;
-    // A bucket and a halo of about a layer each side, with the KD-tree's copy and the slab being written.
-    peak = std::max(peak, (points + 2.0 * static_cast<double>(layer_size(config))) * (16.0 * config.dimension + 48.0));
+    const MethodPlan plan = plan_method(config, m);
+    const double total = static_cast<double>(plan.requested), points = total / slabs;
+    // A bucket and a halo of about a layer each side, with the KD-tree's copy and the slab being written;
+    // the RDF's halo reaches r_max (by default 2.5 mean spacings) each side.
+    double halo = 2.0 * static_cast<double>(layer_size(config));
+    if (config.compute_rdf && config.compute_statistics) {
+      const double r = config.rdf.r_max > 0.0 ? config.rdf.r_max / plan.domain.side : 2.5 / std::pow(total, 1.0 / config.dimension);
+      halo = std::max(halo, 2.0 * std::min(1.0, r) * total);
+    }
+    peak = std::max(peak, std::min(points + halo, total) * (16.0 * config.dimension + 48.0));
   }
   return peak;
 }

@@ -13,11 +13,16 @@
 // measured with a halo of the points within h of it from the others (h starts at the mean spacing and
 // doubles until every nearest neighbour found is closer than the halo's edge, so the distances are
 // exact), the distances go to a temporary file by point index, and are then summed in index order and
-// sorted per slab: min, q01 and the median are exact selections over those sorted runs.
+// sorted per slab: min, q01 and the median are exact selections over those sorted runs. --periodic: the
+// same with minimum-image distances on the torus of the box, the halo wrapping around (the first and last
+// buckets are neighbours; with one or two buckets each point is loaded once). --rdf: each bucket's query
+// points (chosen by point index, as in memory) counted against a halo a little wider than r_max, over as
+// many buckets as it spans; the pair sums are exact integers of fixed point (stats/radial_distribution.hpp),
+// so the curve is the in-memory one to the bit.
 //
 // Memory is O(slab + halo); the temporaries (point count x (N + 2) x 8 bytes) go to $TMPDIR and are
 // removed on every exit. Not streamed: pds, jitter-matched, halton, lhs, --domain ball, --on sphere,
-// --periodic, --rdf, more than one realization (stream_refusal says which).
+// more than one realization (stream_refusal says which).
 #pragma once
 
 #include <functional>

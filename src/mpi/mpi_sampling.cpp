@@ -498,7 +498,13 @@ MethodResult run_mpi_method(const Ranks& ranks, const SampleConfig& config, cons
 
 }  // namespace
 
-std::string mpi_refusal(const SampleConfig& config) { return stream_refusal(config); }
+std::string mpi_refusal(const SampleConfig& config) {
+  // sample --stream measures on the torus and the RDF since the stream2 merge; the ranks' halos do
+  // neither yet (no wrap between the first and last rank, no r_max halo), so refuse rather than differ.
+  if (config.periodic_statistics) return "dfvn-sample-mpi measures in the box: no periodic statistics (sample --stream --periodic has them)";
+  if (config.compute_rdf) return "dfvn-sample-mpi computes no RDF (sample --stream --rdf does)";
+  return stream_refusal(config);
+}
 
 int mpi_slab_count(const SampleConfig& config, int requested, int ranks) {
   const int automatic = stream_slab_count(config, requested);

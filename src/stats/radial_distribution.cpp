@@ -1,6 +1,8 @@
 #include "dfvn/stats/radial_distribution.hpp"
 
+#include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -44,98 +46,228 @@ void check_rdf_resolution(int dimension, double side, double r_max, int bins) {
         r_max, bins, width, dimension));
 }
 
-namespace {
+RdfPairSums::RdfPairSums(int bins, double min_weight, double max_weight) : bins_(bins) {
+  if (!(min_weight > 0.0 && max_weight >= min_weight && std::isfinite(max_weight)))
+    throw std::logic_error("RDF pair weights need a finite positive range");
+  // min_weight is in [2^(e - 1), 2^e): its last bit is 2^(e - 53); two more bits below for weights that
+  // round a little under it. Weights are below 2^E; 2^64 of them below 2^(E + 64).
+  int e = 0, top = 0;
+  std::frexp(min_weight, &e);
+  std::frexp(max_weight, &top);
+  low_exponent_ = e - 55;
+  limbs_ = (top + 2 + 64 - low_exponent_) / 64 + 2;
+  limb_.assign(static_cast<std::size_t>(bins_) * static_cast<std::size_t>(limbs_), 0);
+}
 
-template <int N>
-RdfCurve radial_distribution_impl(const PointSet& points, const RdfOptions& options, std::uint64_t seed, int threads,
-                                  const FractionProgress& progress) {
-  const std::size_t n = points.size();
-  if (n < 2) throw std::invalid_argument("the RDF needs at least 2 points");
-  const double side = points.domain.side;
-  const double volume = points.domain.volume(N);
-  RdfCurve curve;
-  curve.r_max = options.r_max > 0.0 ? options.r_max : 2.5 * std::pow(volume / static_cast<double>(n), 1.0 / N);
+RdfPairSums RdfPairSums::empty_copy() const {
+  RdfPairSums copy = *this;
+  std::fill(copy.limb_.begin(), copy.limb_.end(), 0);
+  return copy;
+}
+
+void RdfPairSums::add(int bin, double weight) {
+  // weight = mantissa 2^(biased - 1075), mantissa < 2^53, for a positive normal double.
+  const auto bits = std::bit_cast<std::uint64_t>(weight);
+  const int biased = static_cast<int>(bits >> 52);
+  const std::uint64_t mantissa = (bits & ((std::uint64_t{1} << 52) - 1)) | (std::uint64_t{1} << 52);
+  const int shift = biased - 1075 - low_exponent_;
+  if (biased == 0 || biased >= 2047 || shift < 0 || shift / 64 + 1 >= limbs_)
+    throw std::logic_error(fmt::format("an RDF pair weight {:g} outside the sums' range", weight));
+  std::uint64_t* s = limb_.data() + static_cast<std::size_t>(bin) * static_cast<std::size_t>(limbs_);
+  int k = shift / 64;
+  const int bit = shift % 64;
+  const std::uint64_t lo = mantissa << bit, hi = bit ? mantissa >> (64 - bit) : 0;
+  s[k] += lo;
+  std::uint64_t carry = s[k] < lo;
+  const std::uint64_t before = s[k + 1];
+  s[k + 1] += hi + carry;  // hi + carry < 2^53
+  carry = s[k + 1] < before;
+  for (k += 2; carry; ++k) {
+    if (k >= limbs_) throw std::logic_error("an RDF pair sum overflowed");
+    carry = ++s[k] == 0;
+  }
+}
+
+void RdfPairSums::merge(const RdfPairSums& other) {
+  if (other.bins_ != bins_ || other.limbs_ != limbs_ || other.low_exponent_ != low_exponent_)
+    throw std::logic_error("RDF pair sums of different shapes");
+  for (int b = 0; b < bins_; ++b) {
+    std::uint64_t* s = limb_.data() + static_cast<std::size_t>(b) * static_cast<std::size_t>(limbs_);
+    const std::uint64_t* t = other.limb_.data() + static_cast<std::size_t>(b) * static_cast<std::size_t>(limbs_);
+    std::uint64_t carry = 0;
+    for (int k = 0; k < limbs_; ++k) {
+      const std::uint64_t a = s[k] + t[k];
+      const std::uint64_t c1 = a < s[k];
+      s[k] = a + carry;
+      carry = c1 | (s[k] < a);
+    }
+    if (carry) throw std::logic_error("an RDF pair sum overflowed");
+  }
+}
+
+double RdfPairSums::sum(int bin) const {
+  const std::uint64_t* s = limb_.data() + static_cast<std::size_t>(bin) * static_cast<std::size_t>(limbs_);
+  int top = limbs_ - 1;
+  while (top >= 0 && s[top] == 0) --top;
+  if (top < 0) return 0.0;
+  if (top == 0) return std::ldexp(static_cast<double>(s[0]), low_exponent_);  // the conversion rounds to nearest
+  // The 64 bits below and at the highest set bit p, with the lowest set when any bit below them is (which
+  // decides a tie without changing any other rounding: 11 bits are dropped), rounded to nearest even.
+  const int p = 64 * top + 63 - std::countl_zero(s[top]);
+  const int low = p - 63, limb = low / 64, offset = low % 64;
+  std::uint64_t window = s[limb] >> offset;
+  if (offset) window |= s[limb + 1] << (64 - offset);
+  bool sticky = offset && (s[limb] & ((std::uint64_t{1} << offset) - 1)) != 0;
+  for (int k = 0; k < limb && !sticky; ++k) sticky = s[k] != 0;
+  if (sticky) window |= 1;
+  return std::ldexp(static_cast<double>(window), low + low_exponent_);
+}
+
+RdfPairSums RdfPlan::empty_sums() const {
+  if (periodic) return RdfPairSums(bins, 1.0, 1.0);  // the torus has no edge: every weight is 1
+  // w = 1 / prod_a (L - |d_a|) with |d_a| <= r_max: between 1 / L^N and 1 / (L - r_max)^N (halved and
+  // doubled against rounding).
+  const double side = domain.side;
+  return RdfPairSums(bins, 0.5 / std::pow(side, dimension), 2.0 / std::pow(side - r_max, dimension));
+}
+
+RdfPlan plan_radial_distribution(int dimension, const Box& domain, std::uint64_t points, const RdfOptions& options) {
+  if (points < 2) throw std::invalid_argument("the RDF needs at least 2 points");
+  RdfPlan plan;
+  plan.dimension = dimension;
+  plan.domain = domain;
+  plan.points = points;
+  plan.bins = options.bins;
+  plan.periodic = options.periodic;
+  const double side = domain.side;
+  const double volume = domain.volume(dimension);
+  plan.r_max = options.r_max > 0.0 ? options.r_max
+                                   : 2.5 * std::pow(volume / static_cast<double>(points), 1.0 / dimension);
   if (options.periodic) {
     // Below half the side, a pair has one minimum image within r_max: no pair is counted twice.
     if (options.r_max >= 0.5 * side)
       throw std::invalid_argument(fmt::format("a periodic RDF needs r_max below half the side ({:g}), got {:g}", 0.5 * side,
                                               options.r_max));
-    if (curve.r_max >= 0.5 * side) curve.r_max = 0.499 * side;
-    check_in_periodic_box(points);
+    if (plan.r_max >= 0.5 * side) plan.r_max = 0.499 * side;
   }
-  if (curve.r_max >= side) curve.r_max = 0.999 * side;  // the edge correction needs |d_a| < L
-  check_rdf_resolution(N, side, curve.r_max, options.bins);
+  if (plan.r_max >= side) plan.r_max = 0.999 * side;  // the edge correction needs |d_a| < L
+  check_rdf_resolution(dimension, side, plan.r_max, options.bins);
+  return plan;
+}
 
-  std::vector<std::uint32_t> queries;
-  if (options.max_queries == 0 || n <= options.max_queries) {
-    queries.resize(n);
-    for (std::size_t i = 0; i < n; ++i) queries[i] = static_cast<std::uint32_t>(i);
-  } else {
-    const double keep = static_cast<double>(options.max_queries) / static_cast<double>(n);
-    for (std::size_t i = 0; i < n; ++i)
-      if (random_unit(seed, Stream::rdf_queries, i) < keep) queries.push_back(static_cast<std::uint32_t>(i));
-  }
-  curve.queries = queries.size();
+RdfQueries::RdfQueries(const RdfOptions& options, std::uint64_t seed, std::uint64_t points)
+    : all_(options.max_queries == 0 || points <= options.max_queries), seed_(seed) {
+  if (!all_) keep_ = static_cast<double>(options.max_queries) / static_cast<double>(points);
+}
 
+bool RdfQueries::operator()(std::uint64_t index) const {
+  return all_ || random_unit(seed_, Stream::rdf_queries, index) < keep_;
+}
+
+namespace {
+
+template <int N>
+void count_rdf_pairs_impl(const PointSet& points, const std::vector<std::uint32_t>& queries, const RdfPlan& plan,
+                          RdfPairSums& sums, int threads, const FractionProgress& progress) {
+  const double side = points.domain.side;
   const PointSetAdaptor<N> adaptor{points};
   const KdTree<N> tree(N, adaptor, kd_tree_params());  // built by its constructor
 
-  const int bins = options.bins;
-  const double bin_width = curve.r_max / bins;
+  const int bins = plan.bins;
+  const double r_max = plan.r_max, r2 = r_max * r_max;
+  // The tree searches a little wider than r_max, so that its pruning (bounds that round) cannot lose a
+  // pair; each pair is then counted by its own squared distance, summed over the axes in order.
+  const double search2 = r2 * (1.0 + 1e-9);
+  const double bin_width = r_max / bins;
   constexpr std::int64_t kBlock = 64;
   const auto q = static_cast<std::int64_t>(queries.size());
   const std::int64_t blocks = (q + kBlock - 1) / kBlock;
-  std::vector<double> histograms(static_cast<std::size_t>(blocks * bins), 0.0);
   std::atomic<std::int64_t> blocks_done{0};
-#pragma omp parallel for schedule(dynamic, 1) num_threads(resolve_threads(threads))
-  for (std::int64_t b = 0; b < blocks; ++b) {
-    if (progress) {  // only the first thread reports
-      const std::int64_t done = blocks_done.fetch_add(1, std::memory_order_relaxed);
-      if (omp_get_thread_num() == 0) progress(static_cast<double>(done) / static_cast<double>(blocks));
-    }
-    double* histogram = histograms.data() + b * bins;
+#pragma omp parallel num_threads(resolve_threads(threads))
+  {
+    RdfPairSums local = sums.empty_copy();
     std::vector<std::pair<std::uint32_t, double>> matches;
-    for (std::int64_t k = b * kBlock; k < std::min(q, (b + 1) * kBlock); ++k) {
-      const std::uint32_t i = queries[static_cast<std::size_t>(k)];
-      const double* x = points.point(i);
-      // The pairs within r_max of x (or, on the torus, of one of its images): each pair once.
-      const auto count_pairs = [&](const double* position, bool image) {
-        matches.clear();
-        tree.radiusSearch(position, curve.r_max * curve.r_max, matches, nanoflann::SearchParams(32, 0.0f, false));
-        for (const auto& [j, dist2] : matches) {
-          if (j == i && !image) continue;
-          const double r = std::sqrt(dist2);
-          const auto bin = static_cast<int>(r / bin_width);
-          if (bin >= bins) continue;
-          double overlap = 1.0;  // |W intersect (W + d)| for the cube of side L; the torus has no edge
-          const double* y = points.point(j);
-          if (!options.periodic)
-            for (int a = 0; a < N; ++a) overlap *= side - std::abs(x[a] - y[a]);
-          histogram[bin] += 1.0 / overlap;
-        }
-      };
-      count_pairs(x, false);
-      if (options.periodic)
-        for_each_periodic_image<N>(x, points.domain.lo, side, [&] { return curve.r_max; },
-                                   [&](const double* image) { count_pairs(image, true); });
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t b = 0; b < blocks; ++b) {
+      if (progress) {  // only the first thread reports
+        const std::int64_t done = blocks_done.fetch_add(1, std::memory_order_relaxed);
+        if (omp_get_thread_num() == 0) progress(static_cast<double>(done) / static_cast<double>(blocks));
+      }
+      for (std::int64_t k = b * kBlock; k < std::min(q, (b + 1) * kBlock); ++k) {
+        const std::uint32_t i = queries[static_cast<std::size_t>(k)];
+        const double* x = points.point(i);
+        // The pairs within r_max of x (or, on the torus, of one of its images): each pair once.
+        const auto count_pairs = [&](const double* position, bool image) {
+          matches.clear();
+          tree.radiusSearch(position, search2, matches, nanoflann::SearchParams(32, 0.0f, false));
+          for (const auto& match : matches) {
+            const std::uint32_t j = match.first;
+            if (j == i && !image) continue;
+            const double* y = points.point(j);
+            double dist2 = 0.0;
+            for (int a = 0; a < N; ++a) dist2 += (position[a] - y[a]) * (position[a] - y[a]);
+            if (!(dist2 < r2)) continue;
+            const auto bin = static_cast<int>(std::sqrt(dist2) / bin_width);
+            if (bin >= bins) continue;
+            double overlap = 1.0;  // |W intersect (W + d)| for the cube of side L; the torus has no edge
+            if (!plan.periodic)
+              for (int a = 0; a < N; ++a) overlap *= side - std::abs(x[a] - y[a]);
+            local.add(bin, 1.0 / overlap);
+          }
+        };
+        count_pairs(x, false);
+        if (plan.periodic)
+          for_each_periodic_image<N>(x, points.domain.lo, side, [&] { return r_max; },
+                                     [&](const double* image) { count_pairs(image, true); });
+      }
     }
+#pragma omp critical(dfvn_rdf_pair_sums)
+    sums.merge(local);
   }
-  curve.r.resize(bins);
-  curve.g.assign(bins, 0.0);
-  for (std::int64_t b = 0; b < blocks; ++b)
-    for (int k = 0; k < bins; ++k) curve.g[k] += histograms[static_cast<std::size_t>(b * bins + k)];
-  const double ball = unit_ball_volume(N);
-  const double normalisation = volume * volume / (static_cast<double>(q) * static_cast<double>(n - 1));
-  for (int k = 0; k < bins; ++k) {
-    const double lo = k * bin_width, hi = (k + 1) * bin_width;
-    curve.r[k] = 0.5 * (lo + hi);
-    const double shell = ball * (std::pow(hi, N) - std::pow(lo, N));
-    curve.g[k] *= normalisation / shell;
-  }
-  return curve;
+}
+
+template <int N>
+RdfCurve radial_distribution_impl(const PointSet& points, const RdfOptions& options, std::uint64_t seed, int threads,
+                                  const FractionProgress& progress) {
+  const RdfPlan plan = plan_radial_distribution(N, points.domain, points.size(), options);
+  if (options.periodic) check_in_periodic_box(points);
+  const RdfQueries is_query(options, seed, points.size());
+  std::vector<std::uint32_t> queries;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (is_query(i)) queries.push_back(static_cast<std::uint32_t>(i));
+  RdfPairSums sums = plan.empty_sums();
+  count_rdf_pairs_impl<N>(points, queries, plan, sums, threads, progress);
+  return finish_radial_distribution(plan, sums, queries.size());
 }
 
 }  // namespace
+
+void count_rdf_pairs(const PointSet& set, const std::vector<std::uint32_t>& queries, const RdfPlan& plan,
+                     RdfPairSums& sums, int threads, const FractionProgress& progress) {
+  if (set.dimension != plan.dimension || set.domain.lo != plan.domain.lo || set.domain.side != plan.domain.side)
+    throw std::logic_error("RDF pairs counted in a set of another dimension or box than the plan's");
+  dispatch_dimension(set.dimension, [&]<int N>() { count_rdf_pairs_impl<N>(set, queries, plan, sums, threads, progress); });
+}
+
+RdfCurve finish_radial_distribution(const RdfPlan& plan, const RdfPairSums& sums, std::uint64_t queries) {
+  const int n = plan.dimension, bins = plan.bins;
+  RdfCurve curve;
+  curve.r_max = plan.r_max;
+  curve.queries = queries;
+  const double bin_width = plan.r_max / bins;
+  const double volume = plan.domain.volume(n);
+  curve.r.resize(static_cast<std::size_t>(bins));
+  curve.g.assign(static_cast<std::size_t>(bins), 0.0);
+  const double ball = unit_ball_volume(n);
+  const double normalisation = volume * volume / (static_cast<double>(queries) * static_cast<double>(plan.points - 1));
+  for (int k = 0; k < bins; ++k) {
+    const double lo = k * bin_width, hi = (k + 1) * bin_width;
+    curve.r[k] = 0.5 * (lo + hi);
+    const double shell = ball * (std::pow(hi, n) - std::pow(lo, n));
+    curve.g[k] = sums.sum(k) * (normalisation / shell);
+  }
+  return curve;
+}
 
 RdfCurve radial_distribution(const PointSet& points, const RdfOptions& options, std::uint64_t seed, int threads,
                              const FractionProgress& progress) {

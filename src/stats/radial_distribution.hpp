@@ -36,10 +36,70 @@ struct RdfCurve {
 // shell volume x n x n on a unit volume without correction, so its curves tend to 0.5 and sag.)
 // Periodic: the pairs at minimum-image distance, w_ij = 1 (the torus has no edge); every coordinate
 // must lie in the box.
-// Independent of thread count: per-block histograms are summed in block order. `progress`: query
-// points done over query points.
+// Independent of thread count and of the order pairs are found in: the weights are summed exactly
+// (RdfPairSums) and rounded once. `progress`: query points done over query points.
 RdfCurve radial_distribution(const PointSet& points, const RdfOptions& options, std::uint64_t seed, int threads,
                              const FractionProgress& progress = {});
+
+// The pieces of radial_distribution, for callers that count a set's pairs in parts (sample --stream: each
+// slab's query points against the slab and a halo holding every point within r_max of them). The curve
+// depends only on the pair sums, which are exact, so parts counted in any order give the same bits.
+
+// Every bin's sum of pair weights as a fixed-point integer wide enough for every weight of the run (the
+// range given) and 2^64 of them: additions in any order (threads, slabs) give the same sum, rounded to the
+// nearest double once, by sum().
+class RdfPairSums {
+ public:
+  RdfPairSums() = default;
+  // Weights in [min_weight, max_weight] (positive, finite); a weight outside is a std::logic_error.
+  RdfPairSums(int bins, double min_weight, double max_weight);
+  // An empty sum of the same bins and range.
+  RdfPairSums empty_copy() const;
+  void add(int bin, double weight);
+  void merge(const RdfPairSums& other);  // same bins and range
+  double sum(int bin) const;             // correctly rounded
+  int bins() const { return bins_; }
+
+ private:
+  int bins_ = 0, limbs_ = 0, low_exponent_ = 0;  // value = sum_k limb_k 2^(64 k + low_exponent_)
+  std::vector<std::uint64_t> limb_;               // bins_ x limbs_
+};
+
+// What an RDF of `points` points in `domain` counts: r_max (the default 2.5 mean spacings, capped as
+// RdfOptions says), the bins, the torus or the cube. Throws std::invalid_argument as radial_distribution.
+struct RdfPlan {
+  int dimension = 0;
+  Box domain;
+  std::uint64_t points = 0;
+  double r_max = 0.0;
+  int bins = 0;
+  bool periodic = false;
+  RdfPairSums empty_sums() const;  // for this plan's weights
+};
+RdfPlan plan_radial_distribution(int dimension, const Box& domain, std::uint64_t points, const RdfOptions& options);
+
+// Whether point `index` of a set of `points` is one of the RDF's query points (by index: all of them when
+// options.max_queries is 0 or at least `points`, else a seeded subset of about max_queries).
+class RdfQueries {
+ public:
+  RdfQueries(const RdfOptions& options, std::uint64_t seed, std::uint64_t points);
+  bool operator()(std::uint64_t index) const;
+
+ private:
+  bool all_ = true;
+  double keep_ = 1.0;
+  std::uint64_t seed_ = 0;
+};
+
+// Adds to `sums` the pairs (i, j) of `set` with i one of the rows `queries` and j any other row within
+// plan.r_max of x_i (on the torus: of x_i or one of its images in the box set.domain, which must be
+// plan.domain). Every point within r_max of a query must be in `set`; coordinates at unit scale
+// (domain_scale and coordinate_scale 1). Independent of thread count. `progress`: queries done.
+void count_rdf_pairs(const PointSet& set, const std::vector<std::uint32_t>& queries, const RdfPlan& plan,
+                     RdfPairSums& sums, int threads, const FractionProgress& progress = {});
+
+// g(r) from the pair sums of `queries` query points.
+RdfCurve finish_radial_distribution(const RdfPlan& plan, const RdfPairSums& sums, std::uint64_t queries);
 
 // Throws std::invalid_argument unless every g(r) of an RDF with this r_max (at most 0.999 side) and
 // number of bins is finite for points in a cube of this side: a bin too narrow has a shell volume

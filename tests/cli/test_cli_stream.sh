@@ -2,7 +2,8 @@
 # Issue 28 item 1, streaming: `sample --stream` makes and measures cnj, jitter, random and sobol in slabs
 # and must give the in-memory run's point files and statistics byte for byte (cmp, --no-timing), for
 # 2D-7D lattices, the torus and the cube (conformant and drop), several slab counts down to slabs of one
-# layer, every point format; and refuse what it cannot stream with one line and no file. Runs the real
+# layer, every point format, --periodic and --rdf (the RDF CSV too); and refuse what it cannot stream with
+# one line and no file. Runs the real
 # binary ($DFVN_SAMPLE).
 set -u
 source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
@@ -80,12 +81,78 @@ cmp -s <("$bin" sample --dim 2 --grid 16 --methods jitter --no-stats --points - 
   <("$bin" sample --dim 2 --grid 16 --methods jitter --no-stats --points - --format dat --stream --slabs 4 2>/dev/null) &&
   ok || bad "--points - differs"
 
+# --periodic and --rdf (issue 28 item 1, finished): minimum-image distances on the torus with a halo that
+# wraps (the first and last slabs are neighbours; one slab, and two whose both neighbours are the same
+# slab), and the RDF from per-slab pair counts with its query subset chosen by index: the stats CSV, the
+# RDF CSV, the JSON and the point files are the in-memory run's.
+same_with_rdf() {
+  local name=$1 slabs=$2
+  shift 2
+  rm -rf "$work/mem" "$work/str"
+  mkdir -p "$work/mem" "$work/str"
+  local common=(--no-timing --points pts --format npy -o stats.csv --json run.json --rdf rdf.csv)
+  if ! (cd "$work/mem" && "$bin" sample "$@" "${common[@]}") 2>"$work/err"; then
+    bad "$name: in memory: $(head -c 300 "$work/err")"
+    return
+  fi
+  if ! (cd "$work/str" && "$bin" sample "$@" "${common[@]}" --stream --slabs "$slabs") 2>"$work/err"; then
+    bad "$name: streamed (--slabs $slabs): $(head -c 300 "$work/err")"
+    return
+  fi
+  local differ=()
+  for f in stats.csv run.json rdf.csv pts/*; do
+    [[ -e $work/mem/$f ]] || continue
+    cmp -s "$work/mem/$f" "$work/str/$f" || differ+=("$f")
+  done
+  # The RDF must hold a curve per method with pairs in it (g > 0 somewhere), else the cmp means little.
+  local curves
+  curves=$(awk -F, 'NR > 1 && $4 + 0 > 0 { print $2 }' "$work/mem/rdf.csv" | sort -u | wc -l)
+  [[ ${#differ[@]} -eq 0 && $curves -ge 1 ]] && ok || bad "$name (--slabs $slabs): ${differ[*]} differ (curves with pairs: $curves)"
+}
+# The torus' nearest neighbours alone (rdf.csv then holds only the header), one slab to one layer each.
+for slabs in 1 2 3 24; do
+  same_as_in_memory "2D periodic" npy $slabs --dim 2 --grid 24 --methods $all --seed 5 --periodic
+done
+same_as_in_memory "5D periodic" npy 5 --dim 5 --grid 5 --methods $all --periodic
+# With the RDF: torus and cube, --periodic or not, 2D-7D, --rdf-queries 0 (every point) and a subset.
+for slabs in 1 2 24; do
+  same_with_rdf "2D periodic rdf" $slabs --dim 2 --grid 24 --methods $all --seed 5 --periodic
+done
+same_with_rdf "2D rdf" 24 --dim 2 --grid 24 --methods $all --seed 5
+same_with_rdf "3D periodic rdf, all queries" 5 --dim 3 --grid 10 --methods $all --periodic --rdf-queries 0
+same_with_rdf "3D rdf, 50 queries" 10 --dim 3 --grid 10 --methods $all --rdf-queries 50
+same_with_rdf "4D cube periodic rdf" 3 --dim 4 --grid 6 --methods $all --domain cube --periodic
+same_with_rdf "4D cube rdf" 6 --dim 4 --grid 6 --methods $all --domain cube --rdf-queries 200
+same_with_rdf "5D periodic rdf, 100 queries" 5 --dim 5 --grid 5 --methods $all --periodic --rdf-queries 100
+same_with_rdf "6D periodic rdf" 2 --dim 6 --grid 4 --methods cnj,jitter,sobol --periodic --rdf-bins 20
+same_with_rdf "6D count periodic rdf" 4 --dim 6 --methods random,sobol -n 3000 --periodic --rdf-queries 300
+same_with_rdf "7D periodic rdf" 3 --dim 7 --grid 3 --methods $all --periodic
+same_with_rdf "7D cube rdf" 3 --dim 7 --grid 3 --methods cnj,jitter --domain cube
+same_with_rdf "3D drop periodic rdf" 4 --dim 3 --grid 8 --methods cnj --domain-mode drop --step-scale 2 --periodic
+# --rdf-max wider than a slab: the halo reaches over several slabs each way (7 of 24 here; on the torus
+# 11 each way, and with 2 slabs each one's halo is the whole set), and beyond every slab in 3D.
+same_with_rdf "2D rdf-max over 7 slabs" 24 --dim 2 --grid 24 --methods cnj,random --rdf-max 0.3
+same_with_rdf "2D periodic rdf-max over 11 slabs" 24 --dim 2 --grid 24 --methods cnj,random --periodic --rdf-max 0.45
+same_with_rdf "2D periodic rdf-max, 2 slabs" 2 --dim 2 --grid 24 --methods cnj,random --periodic --rdf-max 0.45
+same_with_rdf "3D rdf-max beyond every slab" 6 --dim 3 --grid 6 --methods jitter --rdf-max 0.9 --rdf-bins 30
+# A first halo too thin for some nearest neighbour (40 random points in 40 slabs: the halo starts at the
+# mean spacing): the slab is measured again, exactly (test_streamed_statistics checks that it is).
+same_with_rdf "2D thin halo" 40 --dim 2 --methods random -n 40 --seed 3
+same_with_rdf "2D thin halo periodic" 40 --dim 2 --methods random -n 40 --seed 3 --periodic
+
 # Past the memory limit the run streams by itself, with a note, and gives the same statistics.
 "$bin" sample --dim 3 --grid 20 --methods cnj,sobol --no-timing -o "$work/mem.csv" 2>/dev/null
 "$bin" sample --dim 3 --grid 20 --methods cnj,sobol --no-timing -o "$work/auto.csv" --max-memory 0.0005 2>"$work/err" &&
   ok || bad "automatic streaming failed: $(head -c 300 "$work/err")"
 grep -q "note: .*streaming them in slabs (--stream)" "$work/err" && ok || bad "no note on automatic streaming: $(cat "$work/err")"
 cmp -s "$work/mem.csv" "$work/auto.csv" && ok || bad "automatic streaming: statistics differ"
+# ... with --periodic and --rdf too.
+"$bin" sample --dim 3 --grid 20 --methods cnj,sobol --no-timing -o "$work/mem.csv" --periodic --rdf "$work/mem_rdf.csv" \
+  --rdf-queries 500 2>/dev/null
+"$bin" sample --dim 3 --grid 20 --methods cnj,sobol --no-timing -o "$work/auto.csv" --periodic --rdf "$work/auto_rdf.csv" \
+  --rdf-queries 500 --max-memory 0.0005 2>"$work/err" && grep -q "streaming them in slabs" "$work/err" &&
+  cmp -s "$work/mem.csv" "$work/auto.csv" && cmp -s "$work/mem_rdf.csv" "$work/auto_rdf.csv" &&
+  ok || bad "automatic streaming with --periodic --rdf: $(head -c 300 "$work/err")"
 # ... but not when the run cannot stream: the memory refusal stands.
 expect_error "pds past the limit" "" "need about .* of memory" sample --dim 3 --grid 20 --methods pds --max-memory 0.0005
 
@@ -95,8 +162,8 @@ expect_error "slabs not dividing K" "" "--slabs 4 does not divide --grid 10" \
 expect_error "pds" "" "not pds" sample --dim 3 --grid 6 --methods cnj,pds --stream -o "$work/bad.csv"
 expect_error "jitter-matched" "" "not jitter-matched" sample --dim 3 --grid 6 --stream -o "$work/bad.csv"
 expect_error "ball" "" "--domain torus or cube" sample --dim 3 --grid 6 --methods cnj --domain ball --stream -o "$work/bad.csv"
-expect_error "periodic" "" "not --periodic" sample --dim 3 --grid 6 --methods cnj --periodic --stream -o "$work/bad.csv"
-expect_error "rdf" "" "drop --rdf" sample --dim 3 --grid 6 --methods cnj --rdf "$work/rdf.csv" --stream -o "$work/bad.csv"
+expect_error "periodic rdf-max" "" "--rdf-max 0.5 with --periodic must be below half" \
+  sample --dim 3 --grid 6 --methods cnj --periodic --rdf "$work/rdf.csv" --rdf-max 0.5 --stream -o "$work/bad.csv"
 expect_error "sets" "" "drop --sets 2" sample --dim 3 --grid 6 --methods cnj --sets 2 --stream -o "$work/bad.csv"
 expect_error "slabs without stream" "" "--slabs applies to --stream" sample --dim 3 --grid 6 --methods cnj --slabs 2 -o "$work/bad.csv"
 expect_error "more slabs than points" "" "more slabs than points" sample --dim 2 --methods sobol -n 4 --stream --slabs 8 -o "$work/bad.csv"
