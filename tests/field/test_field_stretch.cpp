@@ -24,6 +24,29 @@ std::vector<double> skew_direction(int n) {
   return u;
 }
 
+// The eigenvector of the gradient covariance closest to the stretch direction u = skew_direction(N):
+// its angle to u in degrees and its eigenvalue over the mean of the others. One dynamic-size solver for
+// every dimension (the fixed-size ones, instantiated per dimension, made this file the slowest to build).
+struct StretchAxis {
+  double angle = 0.0, ratio = 0.0;
+};
+StretchAxis stretch_axis(const Eigen::MatrixXd& covariance) {
+  const int n = static_cast<int>(covariance.rows());
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(covariance);
+  Eigen::VectorXd u(n);
+  for (int j = 0; j < n; ++j) u[j] = skew_direction(n)[j];
+  u.normalize();
+  int along = 0;
+  for (int j = 1; j < n; ++j)
+    if (std::abs(eig.eigenvectors().col(j).dot(u)) > std::abs(eig.eigenvectors().col(along).dot(u))) along = j;
+  const double angle = std::acos(std::min(1.0, std::abs(eig.eigenvectors().col(along).dot(u)))) * 180.0 / std::numbers::pi;
+  double others = 0.0;
+  for (int j = 0; j < n; ++j)
+    if (j != along) others += eig.eigenvalues()[j];
+  others /= n - 1;
+  return {angle, eig.eigenvalues()[along] / others};
+}
+
 template <typename T>
 class FieldStretchTest : public ::testing::Test {};
 TYPED_TEST_SUITE(FieldStretchTest, testing::AllDimensions);
@@ -74,19 +97,7 @@ TYPED_TEST(FieldStretchTest, GradientCovarianceHasTheStretchAlongU) {
         const FieldSample<N> f = field.evaluate_functions(x);
         for (const Vec<N>& g : f.gradient) moment += g * g.transpose();
       }
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eig(moment / (kPoints * (N - 1.0)));
-      Vec<N> u;
-      for (int j = 0; j < N; ++j) u[j] = skew_direction(N)[j];
-      u.normalize();
-      int along = 0;
-      for (int j = 1; j < N; ++j)
-        if (std::abs(eig.eigenvectors().col(j).dot(u)) > std::abs(eig.eigenvectors().col(along).dot(u))) along = j;
-      const double angle = std::acos(std::min(1.0, std::abs(eig.eigenvectors().col(along).dot(u)))) * 180.0 / std::numbers::pi;
-      double others = 0.0;
-      for (int j = 0; j < N; ++j)
-        if (j != along) others += eig.eigenvalues()[j];
-      others /= N - 1;
-      const double ratio = eig.eigenvalues()[along] / others;
+      const auto [angle, ratio] = stretch_axis(moment / (kPoints * (N - 1.0)));
       std::printf("%s %dD S %.1f: angle %.3f deg, eigenvalue ratio %.4f (S^2 = %.4f)\n", std::string(to_string(basis)).c_str(), N,
                   s, angle, ratio, s * s);
       SCOPED_TRACE(::testing::Message() << to_string(basis) << " S " << s);

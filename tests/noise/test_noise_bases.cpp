@@ -26,6 +26,12 @@ TYPED_TEST_SUITE(NoiseBasisTest, testing::AllBasesAndDimensions, testing::BasisD
 
 constexpr std::uint64_t kSeed = 8128;
 
+// The fixture's make for a basis given at run time: the tests below are compiled once per dimension.
+template <int N>
+std::shared_ptr<const NoiseFunctions<N>> make_basis(NoiseBasis basis, std::uint64_t seed) {
+  return make_noise_functions<N>(basis, seed);
+}
+
 // Points spread over ~100 noise cycles per axis.
 template <int N>
 Vec<N> spread_point(const NoiseFunctions<N>& noise, std::uint64_t seed, std::uint64_t index) {
@@ -33,9 +39,9 @@ Vec<N> spread_point(const NoiseFunctions<N>& noise, std::uint64_t seed, std::uin
   return testing::random_point<N>(seed, index, 0.0, extent);
 }
 
-TYPED_TEST(NoiseBasisTest, AnalyticGradientMatchesCentralDifferences) {
-  constexpr int N = TestFixture::N;
-  const auto noise = TestFixture::make(kSeed);
+template <int N>
+void AnalyticGradientMatchesCentralDifferencesBody([[maybe_unused]] NoiseBasis basis) {
+  const auto noise = make_basis<N>(basis, kSeed);
   const double h = 1e-6 / noise->wavenumber();
   double worst = 0.0;
   int tested = 0;
@@ -55,9 +61,10 @@ TYPED_TEST(NoiseBasisTest, AnalyticGradientMatchesCentralDifferences) {
       }
     }
   }
-  std::printf("%s N=%d max relative gradient error %.3g over %d gradients\n", to_string(TypeParam::basis).data(), N, worst, tested);
+  std::printf("%s N=%d max relative gradient error %.3g over %d gradients\n", to_string(basis).data(), N, worst, tested);
   EXPECT_LT(worst, 1e-5) << "seed " << kSeed;
 }
+TYPED_TEST(NoiseBasisTest, AnalyticGradientMatchesCentralDifferences) { AnalyticGradientMatchesCentralDifferencesBody<TypeParam::dimension>(TypeParam::basis); }
 
 // Walks finely along random segments that cross many cells. With step h along direction u:
 //   value:    |f(x+hu) - f(x) - h (g(x) + g(x+hu)).u / 2| = O(h^3 |f'''|) for C2 f,
@@ -106,19 +113,20 @@ SegmentJumps segment_jumps(const Evaluate& evaluate, double wavenumber, std::uin
   return worst;
 }
 
-TYPED_TEST(NoiseBasisTest, ValueGradientAndHessianAreContinuousAlongSegments) {
-  constexpr int N = TestFixture::N;
-  const auto noise = TestFixture::make(kSeed);
+template <int N>
+void ValueGradientAndHessianAreContinuousAlongSegmentsBody([[maybe_unused]] NoiseBasis basis) {
+  const auto noise = make_basis<N>(basis, kSeed);
   const double k = noise->wavenumber();
   // 40 segments of 2 cycles each (the study found 8 segments too few to meet a missing vertex in 5D).
   const SegmentJumps jumps = segment_jumps<N>([&](const Vec<N>& x) { return noise->evaluate(x); }, k, kSeed + 1, 40,
                                               static_cast<int>(2 * 2 * std::numbers::pi / kSegmentStep), 200.0 / k);
-  std::printf("%s N=%d jumps: value %.3g gradient %.3g hessian %.3g\n", to_string(TypeParam::basis).data(), N,
+  std::printf("%s N=%d jumps: value %.3g gradient %.3g hessian %.3g\n", to_string(basis).data(), N,
               jumps.value, jumps.gradient, jumps.hessian);
   EXPECT_LT(jumps.value, 1e-9);
   EXPECT_LT(jumps.gradient, 5e-3);
   EXPECT_LT(jumps.hessian, 5e-3);
 }
+TYPED_TEST(NoiseBasisTest, ValueGradientAndHessianAreContinuousAlongSegments) { ValueGradientAndHessianAreContinuousAlongSegmentsBody<TypeParam::dimension>(TypeParam::basis); }
 
 // The control: one band of C1 noise (cubic fade 3u^2 - 2u^3, whose second derivative jumps at every
 // knot) must fail the Hessian bound that every basis passes.
@@ -143,9 +151,9 @@ TEST(NoiseContinuity, ContinuityCheckCatchesAHessianJump) {
   EXPECT_GT(jumps.hessian, 5e-2);   // the Hessian jump is caught, 10x above the bound every basis meets
 }
 
-TYPED_TEST(NoiseBasisTest, SeedDeterminesTheFunctions) {
-  constexpr int N = TestFixture::N;
-  const auto a = TestFixture::make(kSeed), b = TestFixture::make(kSeed), c = TestFixture::make(kSeed + 1);
+template <int N>
+void SeedDeterminesTheFunctionsBody([[maybe_unused]] NoiseBasis basis) {
+  const auto a = make_basis<N>(basis, kSeed), b = make_basis<N>(basis, kSeed), c = make_basis<N>(basis, kSeed + 1);
   int differ = 0, nonzero = 0;
   for (std::uint64_t i = 0; i < 200; ++i) {
     const Vec<N> x = spread_point<N>(*a, kSeed + 3, i);
@@ -163,10 +171,11 @@ TYPED_TEST(NoiseBasisTest, SeedDeterminesTheFunctions) {
   // seeds agree with probability 1/(N 2^(N-1)) (1/192 in 6D). Allow 5%.
   EXPECT_GE(differ, 0.95 * nonzero);
 }
+TYPED_TEST(NoiseBasisTest, SeedDeterminesTheFunctions) { SeedDeterminesTheFunctionsBody<TypeParam::dimension>(TypeParam::basis); }
 
-TYPED_TEST(NoiseBasisTest, FiniteEverywhereInTheSampledRange) {
-  constexpr int N = TestFixture::N;
-  const auto noise = TestFixture::make(kSeed);
+template <int N>
+void FiniteEverywhereInTheSampledRangeBody([[maybe_unused]] NoiseBasis basis) {
+  const auto noise = make_basis<N>(basis, kSeed);
   for (std::uint64_t i = 0; i < 2000; ++i) {
     const double extent = std::ldexp(1.0, static_cast<int>(i % 40));  // up to 2^39 noise units
     const Vec<N> x = testing::random_point<N>(kSeed + 9, i, -extent, extent);
@@ -177,6 +186,7 @@ TYPED_TEST(NoiseBasisTest, FiniteEverywhereInTheSampledRange) {
     }
   }
 }
+TYPED_TEST(NoiseBasisTest, FiniteEverywhereInTheSampledRange) { FiniteEverywhereInTheSampledRangeBody<TypeParam::dimension>(TypeParam::basis); }
 
 // The N-1 functions must be independent: the correlations of their values and of their squared
 // gradient magnitudes are ~0 (the shared simplex traversal fails the second from 3D on: 0.48 in 3D,
@@ -200,10 +210,10 @@ Correlation correlation(const std::vector<double>& a, const std::vector<double>&
   return {cov / std::sqrt(va * vb), std::abs(cov) / std::sqrt(cov2)};
 }
 
-TYPED_TEST(NoiseBasisTest, FunctionValuesAreUncorrelated) {
-  constexpr int N = TestFixture::N;
+template <int N>
+void FunctionValuesAreUncorrelatedBody([[maybe_unused]] NoiseBasis basis) {
   if constexpr (N >= 3) {
-    const auto noise = TestFixture::make(kSeed);
+    const auto noise = make_basis<N>(basis, kSeed);
     const int samples = 40000;
     std::vector<std::vector<double>> values(N - 1, std::vector<double>(samples));
     for (int i = 0; i < samples; ++i) {
@@ -217,21 +227,22 @@ TYPED_TEST(NoiseBasisTest, FunctionValuesAreUncorrelated) {
         worst_z = std::max(worst_z, c.z);
         worst_r = std::max(worst_r, std::abs(c.r));
       }
-    std::printf("%s N=%d value correlation: max |r| %.4f, max z %.2f\n", to_string(TypeParam::basis).data(), N, worst_r, worst_z);
+    std::printf("%s N=%d value correlation: max |r| %.4f, max z %.2f\n", to_string(basis).data(), N, worst_r, worst_z);
     // Up to 21 pairs: 4.5 standard errors is a false-alarm rate below 1e-4.
     EXPECT_LT(worst_z, 4.5) << "seed " << kSeed;
     EXPECT_LT(worst_r, 0.05);
   }
 }
+TYPED_TEST(NoiseBasisTest, FunctionValuesAreUncorrelated) { FunctionValuesAreUncorrelatedBody<TypeParam::dimension>(TypeParam::basis); }
 
 template <typename T>
 class HealthyBasisTest : public NoiseBasisTest<T> {};
 TYPED_TEST_SUITE(HealthyBasisTest, testing::HealthyBasesAndDimensions, testing::BasisDimName);
 
-TYPED_TEST(HealthyBasisTest, GradientMagnitudesAreUncorrelated) {
-  constexpr int N = TestFixture::N;
+template <int N>
+void GradientMagnitudesAreUncorrelatedBody([[maybe_unused]] NoiseBasis basis) {
   if constexpr (N >= 3) {
-    const auto noise = TestFixture::make(kSeed);
+    const auto noise = make_basis<N>(basis, kSeed);
     const int samples = 40000;
     std::vector<std::vector<double>> g2(N - 1, std::vector<double>(samples));
     for (int i = 0; i < samples; ++i) {
@@ -250,13 +261,14 @@ TYPED_TEST(HealthyBasisTest, GradientMagnitudesAreUncorrelated) {
     EXPECT_LT(worst_r, 0.05);
   }
 }
+TYPED_TEST(HealthyBasisTest, GradientMagnitudesAreUncorrelated) { GradientMagnitudesAreUncorrelatedBody<TypeParam::dimension>(TypeParam::basis); }
 
 // k_eff = sqrt(E|grad n|^2 / E n^2) as each basis reports it (closed forms) against a measurement.
-TYPED_TEST(NoiseBasisTest, WavenumberMatchesItsMeasurement) {
-  constexpr int N = TestFixture::N;
+template <int N>
+void WavenumberMatchesItsMeasurementBody([[maybe_unused]] NoiseBasis basis) {
   double value2 = 0.0, gradient2 = 0.0;
   for (std::uint64_t seed = 0; seed < 4; ++seed) {
-    const auto noise = TestFixture::make(kSeed + 10 + seed);
+    const auto noise = make_basis<N>(basis, kSeed + 10 + seed);
     for (std::uint64_t i = 0; i < 20000; ++i) {
       const Vec<N> x = testing::random_point<N>(kSeed + 20 + seed, i, 0.0, 1000.0 * 2.0 * std::numbers::pi / noise->wavenumber());
       const auto s = noise->evaluate(x);
@@ -264,11 +276,12 @@ TYPED_TEST(NoiseBasisTest, WavenumberMatchesItsMeasurement) {
     }
   }
   const double measured = std::sqrt(gradient2 / value2);
-  const double reported = TestFixture::make(kSeed)->wavenumber();
-  std::printf("%s N=%d k_eff reported %.4f measured %.4f\n", to_string(TypeParam::basis).data(), N, reported, measured);
+  const double reported = make_basis<N>(basis, kSeed)->wavenumber();
+  std::printf("%s N=%d k_eff reported %.4f measured %.4f\n", to_string(basis).data(), N, reported, measured);
   // Sampling error of a ratio of means over 80,000 points of heavy-tailed values: a few percent.
   EXPECT_NEAR(measured / reported, 1.0, 0.03);
 }
+TYPED_TEST(NoiseBasisTest, WavenumberMatchesItsMeasurement) { WavenumberMatchesItsMeasurementBody<TypeParam::dimension>(TypeParam::basis); }
 
 // The closed-form band moments: E p'^2 = 20/77 exactly (integrate the polynomials by hand or with any
 // CAS), E p^2 = 535/27027; data/NOISE_STUDY.md measured sigma^2 = 0.2597 and k_eff = 3.62.

@@ -20,20 +20,20 @@ using AllThreeBases = ::testing::Types<DFVN_BASIS_DIMENSIONS(NoiseBasis::simplex
                                        DFVN_BASIS_DIMENSIONS(NoiseBasis::simplex_separate)>;
 
 template <typename T>
-class NoisePhaseTest : public ::testing::Test {
- protected:
-  static constexpr int N = T::dimension;
-  // The basis at a phase; periodic: its torus form at 3 cycles per unit length (turning bands only).
-  static std::shared_ptr<const NoiseFunctions<N>> make(double phase, bool periodic = false, std::uint64_t seed = kSeed) {
-    return periodic ? make_periodic_noise_functions<N>(T::basis, seed, 3.0, phase)
-                    : make_noise_functions<N>(T::basis, seed, phase);
-  }
-  static std::vector<bool> forms() {
-    return T::basis == NoiseBasis::turning_bands ? std::vector<bool>{false, true} : std::vector<bool>{false};
-  }
-  static constexpr std::uint64_t kSeed = 4099;
-};
+class NoisePhaseTest : public ::testing::Test {};
 TYPED_TEST_SUITE(NoisePhaseTest, AllThreeBases, testing::BasisDimName);
+
+// The fixture's make and forms for a basis given at run time: the tests below are compiled once per
+// dimension, not once per (basis, dimension).
+constexpr std::uint64_t kPhaseSeed = 4099;
+template <int N>
+std::shared_ptr<const NoiseFunctions<N>> make_basis(NoiseBasis basis, double phase, bool periodic = false,
+                                                    std::uint64_t seed = kPhaseSeed) {
+  return periodic ? make_periodic_noise_functions<N>(basis, seed, 3.0, phase) : make_noise_functions<N>(basis, seed, phase);
+}
+std::vector<bool> phase_forms(NoiseBasis basis) {
+  return basis == NoiseBasis::turning_bands ? std::vector<bool>{false, true} : std::vector<bool>{false};
+}
 
 // Points over 10^4 noise cycles per axis (the periodic form: the unit torus). A band's values are
 // correlated along it over about one knot: over only 100 cycles a 2D function sees ~700 independent knot
@@ -59,36 +59,37 @@ double largest_difference(const NoiseFunctions<N>& a, const NoiseFunctions<N>& b
   return worst;
 }
 
-TYPED_TEST(NoisePhaseTest, PeriodTwoPiAndSignChangeAtPi) {
-  constexpr int N = TestFixture::N;
-  for (const bool periodic : TestFixture::forms())
+template <int N>
+void PeriodTwoPiAndSignChangeAtPiBody([[maybe_unused]] NoiseBasis basis) {
+  for (const bool periodic : phase_forms(basis))
     for (const double alpha : {0.0, 1.0, 2.5, -4.0, 100.0}) {
       SCOPED_TRACE(::testing::Message() << "alpha " << alpha << (periodic ? " periodic" : ""));
-      const auto f = TestFixture::make(alpha, periodic);
-      const auto turned = TestFixture::make(alpha + 2.0 * std::numbers::pi, periodic);
-      const auto flipped = TestFixture::make(alpha + std::numbers::pi, periodic);
+      const auto f = make_basis<N>(basis, alpha, periodic);
+      const auto turned = make_basis<N>(basis, alpha + 2.0 * std::numbers::pi, periodic);
+      const auto flipped = make_basis<N>(basis, alpha + std::numbers::pi, periodic);
       EXPECT_LE(largest_difference<N>(*f, *turned, 1.0, periodic), 1e-12);
       EXPECT_LE(largest_difference<N>(*f, *flipped, -1.0, periodic), 1e-12);
       // The phase changes the functions (this test could not pass with a phase that did nothing).
-      const auto other = TestFixture::make(alpha + 1.0, periodic);
+      const auto other = make_basis<N>(basis, alpha + 1.0, periodic);
       EXPECT_GT(largest_difference<N>(*f, *other, 1.0, periodic), 1e-3);
     }
 }
+TYPED_TEST(NoisePhaseTest, PeriodTwoPiAndSignChangeAtPi) { PeriodTwoPiAndSignChangeAtPiBody<TypeParam::dimension>(TypeParam::basis); }
 
 // The correlation is a spatial average over 10^5 points of one seed's functions. On the torus that cannot
 // work: a periodic band has only L_b knots (often 2), so one seed's functions hold a few dozen random
 // slopes and their spatial correlation is itself random (0.83 instead of cos 1 = 0.54 in 2D for seed
 // 4099). There the sums are pooled over 4000 seeds with 25 points each: the ensemble correlation, which
 // is what cos alpha describes (1000 seeds still missed by 0.013 in 3D; 4000 seeds of 25 points do not).
-TYPED_TEST(NoisePhaseTest, CorrelationWithPhaseZeroIsCosAlpha) {
-  constexpr int N = TestFixture::N;
-  for (const bool periodic : TestFixture::forms()) {
+template <int N>
+void CorrelationWithPhaseZeroIsCosAlphaBody([[maybe_unused]] NoiseBasis basis) {
+  for (const bool periodic : phase_forms(basis)) {
     const std::uint64_t seeds = periodic ? 4000 : 1, points = periodic ? 25 : 100000;
     for (const double alpha : {0.5, 1.0, 2.0, 2.5}) {
       // Pearson correlation of n_i(., alpha) with n_i(., 0), every function pooled (zero-mean noise).
       double sxy = 0.0, sxx = 0.0, syy = 0.0, sx = 0.0, sy = 0.0, count = 0.0;
-      for (std::uint64_t seed = TestFixture::kSeed; seed < TestFixture::kSeed + seeds; ++seed) {
-        const auto f0 = TestFixture::make(0.0, periodic, seed), f = TestFixture::make(alpha, periodic, seed);
+      for (std::uint64_t seed = kPhaseSeed; seed < kPhaseSeed + seeds; ++seed) {
+        const auto f0 = make_basis<N>(basis, 0.0, periodic, seed), f = make_basis<N>(basis, alpha, periodic, seed);
         for (std::uint64_t k = 0; k < points; ++k) {
           const Vec<N> p = phase_point<N>(*f0, periodic, k);
           const auto s0 = f0->evaluate(p), s = f->evaluate(p);
@@ -101,17 +102,18 @@ TYPED_TEST(NoisePhaseTest, CorrelationWithPhaseZeroIsCosAlpha) {
       const double cov = sxy / count - (sx / count) * (sy / count);
       const double correlation = cov / std::sqrt((sxx / count - std::pow(sx / count, 2)) * (syy / count - std::pow(sy / count, 2)));
       std::printf("phase correlation: %s%s %dD alpha %.2f: %.4f (cos alpha %.4f, difference %+.4f)\n",
-                  std::string(to_string(TypeParam::basis)).c_str(), periodic ? " (torus F=3, 4000 seeds)" : "", N, alpha,
+                  std::string(to_string(basis)).c_str(), periodic ? " (torus F=3, 4000 seeds)" : "", N, alpha,
                   correlation, std::cos(alpha), correlation - std::cos(alpha));
       EXPECT_NEAR(correlation, std::cos(alpha), 0.01) << "alpha " << alpha << (periodic ? " periodic" : "");
     }
   }
 }
+TYPED_TEST(NoisePhaseTest, CorrelationWithPhaseZeroIsCosAlpha) { CorrelationWithPhaseZeroIsCosAlphaBody<TypeParam::dimension>(TypeParam::basis); }
 
-TYPED_TEST(NoisePhaseTest, AnalyticGradientMatchesCentralDifferencesAtAPhase) {
-  constexpr int N = TestFixture::N;
-  for (const bool periodic : TestFixture::forms()) {
-    const auto f = TestFixture::make(1.3, periodic);
+template <int N>
+void AnalyticGradientMatchesCentralDifferencesAtAPhaseBody([[maybe_unused]] NoiseBasis basis) {
+  for (const bool periodic : phase_forms(basis)) {
+    const auto f = make_basis<N>(basis, 1.3, periodic);
     const double h = 1e-6 / f->wavenumber();
     double worst = 0.0, scale = 0.0;
     // Within 100 cycles of the origin: at 10^4 cycles the rounding of x + h alone is ~1e-6 of the difference.
@@ -132,14 +134,17 @@ TYPED_TEST(NoisePhaseTest, AnalyticGradientMatchesCentralDifferencesAtAPhase) {
     EXPECT_LE(worst, 1e-5 * scale) << (periodic ? "periodic" : "");
   }
 }
+TYPED_TEST(NoisePhaseTest, AnalyticGradientMatchesCentralDifferencesAtAPhase) { AnalyticGradientMatchesCentralDifferencesAtAPhaseBody<TypeParam::dimension>(TypeParam::basis); }
 
-TYPED_TEST(NoisePhaseTest, WavenumberAndAmplitudeDoNotDependOnThePhase) {
-  for (const bool periodic : TestFixture::forms()) {
-    const auto f0 = TestFixture::make(0.0, periodic), f = TestFixture::make(2.5, periodic);
+template <int N>
+void WavenumberAndAmplitudeDoNotDependOnThePhaseBody([[maybe_unused]] NoiseBasis basis) {
+  for (const bool periodic : phase_forms(basis)) {
+    const auto f0 = make_basis<N>(basis, 0.0, periodic), f = make_basis<N>(basis, 2.5, periodic);
     EXPECT_EQ(f->wavenumber(), f0->wavenumber());
     EXPECT_EQ(f->amplitude(), f0->amplitude());
   }
 }
+TYPED_TEST(NoisePhaseTest, WavenumberAndAmplitudeDoNotDependOnThePhase) { WavenumberAndAmplitudeDoNotDependOnThePhaseBody<TypeParam::dimension>(TypeParam::basis); }
 
 TEST(NoisePhase, NonFinitePhaseIsRefused) {
   for (const double bad : {std::nan(""), std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()}) {
