@@ -515,53 +515,6 @@ class NearestStream {
   double zmin_ = std::numeric_limits<double>::infinity(), zmax_ = -std::numeric_limits<double>::infinity();
 };
 
-// One slab of a method: its points (accepted, in index order), its displacements (lattice methods: every
-// traced row) and its counts.
-struct Slab {
-  PointSet points;
-  std::vector<double> displacements;
-  std::uint64_t dropped = 0, skipped = 0, retraced = 0, kept = 0;
-  double trace_time = 0.0, field_frequency = 0.0;
-};
-
-Slab generate_slab(const SampleConfig& config, const MethodPlan& plan, std::uint64_t first, std::uint64_t rows) {
-  const LatticeSpec lattice = config.lattice();
-  Slab s;
-  switch (plan.method) {
-    case Method::cnj: {
-      CnjResult r = curl_noise_jitter_range(lattice, config.cnj, config.seed, first, rows, config.threads);
-      s.points = std::move(r.points);
-      s.displacements = std::move(r.displacements);
-      s.dropped = r.dropped;
-      s.skipped = r.trace_stats.skipped_updates;
-      s.retraced = r.retraced;
-      s.kept = r.kept_at_site;
-      s.trace_time = r.trace_time;
-      s.field_frequency = r.field_frequency;
-      return s;
-    }
-    case Method::jitter: {
-      s.points = jittered_lattice_range(lattice, jitter_half_width(lattice), first, rows, config.seed, config.threads);
-      const int n = config.dimension;
-      s.displacements.resize(s.points.coordinates.size());
-      std::vector<double> site(static_cast<std::size_t>(n));
-      for (std::uint64_t r = 0; r < rows; ++r) {
-        lattice.point(first + r, site.data());
-        for (int a = 0; a < n; ++a) s.displacements[r * n + a] = s.points.point(r)[a] - site[a];
-      }
-      return s;
-    }
-    case Method::random:
-      s.points = uniform_random_points_range(config.dimension, first, rows, plan.domain, config.seed, config.threads);
-      return s;
-    case Method::sobol:
-      s.points = sobol_points_range(config.dimension, first, rows, plan.domain, config.scramble, config.seed, config.threads);
-      return s;
-    default: break;
-  }
-  throw std::logic_error("a method that does not stream");
-}
-
 MethodResult run_streamed_method(const SampleConfig& config, const MethodPlan& plan, int slab_count,
                                  const std::function<std::string(Method)>& point_path, PointFormat format,
                                  const StageProgress& progress) {
@@ -654,6 +607,48 @@ MethodResult run_streamed_method(const SampleConfig& config, const MethodPlan& p
 }
 
 }  // namespace
+
+Slab generate_slab(const SampleConfig& config, const MethodPlan& plan, std::uint64_t first, std::uint64_t rows) {
+  const LatticeSpec lattice = config.lattice();
+  Slab s;
+  if (rows == 0) {
+    s.points = PointSet{config.dimension, {}, plan.method == Method::cnj ? Box{0.0, 1.0} : plan.domain};
+    return s;
+  }
+  switch (plan.method) {
+    case Method::cnj: {
+      CnjResult r = curl_noise_jitter_range(lattice, config.cnj, config.seed, first, rows, config.threads);
+      s.points = std::move(r.points);
+      s.displacements = std::move(r.displacements);
+      s.dropped = r.dropped;
+      s.skipped = r.trace_stats.skipped_updates;
+      s.retraced = r.retraced;
+      s.kept = r.kept_at_site;
+      s.trace_time = r.trace_time;
+      s.field_frequency = r.field_frequency;
+      return s;
+    }
+    case Method::jitter: {
+      s.points = jittered_lattice_range(lattice, jitter_half_width(lattice), first, rows, config.seed, config.threads);
+      const int n = config.dimension;
+      s.displacements.resize(s.points.coordinates.size());
+      std::vector<double> site(static_cast<std::size_t>(n));
+      for (std::uint64_t r = 0; r < rows; ++r) {
+        lattice.point(first + r, site.data());
+        for (int a = 0; a < n; ++a) s.displacements[r * n + a] = s.points.point(r)[a] - site[a];
+      }
+      return s;
+    }
+    case Method::random:
+      s.points = uniform_random_points_range(config.dimension, first, rows, plan.domain, config.seed, config.threads);
+      return s;
+    case Method::sobol:
+      s.points = sobol_points_range(config.dimension, first, rows, plan.domain, config.scramble, config.seed, config.threads);
+      return s;
+    default: break;
+  }
+  throw std::logic_error("a method that does not stream");
+}
 
 std::string stream_refusal(const SampleConfig& config) {
   if (config.on != Surface::none) return "--stream makes point sets in a cube, not --on sphere";

@@ -43,6 +43,17 @@ std::string stream_refusal(const SampleConfig& config);
 inline constexpr std::uint64_t kStreamSlabPoints = std::uint64_t{1} << 22;
 int stream_slab_count(const SampleConfig& config, int requested);
 
+// Rows [first, first + rows) of a streamable method (cnj, jitter, random, sobol): its accepted points in index
+// order, its displacements (lattice methods: every traced row) and its counts. Every point depends only on
+// its index, so any cut into ranges gives the same rows (sample --stream's slabs, dfvn-sample-mpi's ranks).
+struct Slab {
+  PointSet points;
+  std::vector<double> displacements;
+  std::uint64_t dropped = 0, skipped = 0, retraced = 0, kept = 0;
+  double trace_time = 0.0, field_frequency = 0.0;
+};
+Slab generate_slab(const SampleConfig& config, const MethodPlan& plan, std::uint64_t first, std::uint64_t rows);
+
 // Bytes a streamed run needs at its peak (about): the largest bucket with its halo, measured.
 double streamed_peak_bytes(const SampleConfig& config, int slabs);
 

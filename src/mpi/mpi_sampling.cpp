@@ -56,58 +56,6 @@ std::uint64_t slab_rows(const SampleConfig& config, const MethodPlan& plan, int 
                                  : (plan.requested + count - 1) / count;
 }
 
-// A rank's rows [first, first + rows) of one method: its accepted points (index order), its displacements
-// (lattice methods: every traced row) and its counts. The one-process stream's generate_slab, over the
-// rank's contiguous slabs at once (every point depends only on its index).
-struct Part {
-  PointSet points;
-  std::vector<double> displacements;
-  std::uint64_t dropped = 0, skipped = 0, retraced = 0, kept = 0;
-  double trace_time = 0.0, field_frequency = 0.0;
-};
-
-Part generate_part(const SampleConfig& config, const MethodPlan& plan, std::uint64_t first, std::uint64_t rows) {
-  const LatticeSpec lattice = config.lattice();
-  Part s;
-  if (rows == 0) {
-    s.points = PointSet{config.dimension, {}, plan.method == Method::cnj ? Box{0.0, 1.0} : plan.domain};
-    return s;
-  }
-  switch (plan.method) {
-    case Method::cnj: {
-      CnjResult r = curl_noise_jitter_range(lattice, config.cnj, config.seed, first, rows, config.threads);
-      s.points = std::move(r.points);
-      s.displacements = std::move(r.displacements);
-      s.dropped = r.dropped;
-      s.skipped = r.trace_stats.skipped_updates;
-      s.retraced = r.retraced;
-      s.kept = r.kept_at_site;
-      s.trace_time = r.trace_time;
-      s.field_frequency = r.field_frequency;
-      return s;
-    }
-    case Method::jitter: {
-      s.points = jittered_lattice_range(lattice, jitter_half_width(lattice), first, rows, config.seed, config.threads);
-      const int n = config.dimension;
-      s.displacements.resize(s.points.coordinates.size());
-      std::vector<double> site(static_cast<std::size_t>(n));
-      for (std::uint64_t r = 0; r < rows; ++r) {
-        lattice.point(first + r, site.data());
-        for (int a = 0; a < n; ++a) s.displacements[r * n + a] = s.points.point(r)[a] - site[a];
-      }
-      return s;
-    }
-    case Method::random:
-      s.points = uniform_random_points_range(config.dimension, first, rows, plan.domain, config.seed, config.threads);
-      return s;
-    case Method::sobol:
-      s.points = sobol_points_range(config.dimension, first, rows, plan.domain, config.scramble, config.seed, config.threads);
-      return s;
-    default: break;
-  }
-  throw std::logic_error("a method that does not stream");
-}
-
 // The displacement sums of a lattice method (LatticeDisplacementSums), added by each rank to the state
 // passed along the ranks, in the order of the one-process stream's DisplacementStream: every
 // accumulator in index order. The state: points, included, unmoved, pairs, sum2, pair_sum2[N],
@@ -412,8 +360,8 @@ MethodResult run_mpi_method(const Ranks& ranks, const SampleConfig& config, cons
     throw std::invalid_argument("--stream measures sets of ordinary side only");
 
   Stopwatch stopwatch;
-  Part part;
-  run_everywhere(ranks.comm, [&] { part = generate_part(config, plan, first, rows); });
+  Slab part;
+  run_everywhere(ranks.comm, [&] { part = generate_slab(config, plan, first, rows); });
   // Counts: the output rows of the ranks below, the totals.
   unsigned long long counts[5] = {part.points.size(), part.dropped, part.skipped, part.retraced, part.kept}, totals[5];
   MPI_Allreduce(counts, totals, 5, MPI_UNSIGNED_LONG_LONG, MPI_SUM, ranks.comm);
