@@ -11,6 +11,7 @@
 #include <limits>
 #include <memory>
 #include <stdexcept>
+#include <utility>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -19,6 +20,7 @@
 #include "dfvn/io/atomic_file.hpp"
 #include "dfvn/sampling/jitter.hpp"
 #include "dfvn/stats/distance_scale.hpp"
+#include "dfvn/stats/nearest_neighbour.hpp"
 #include "dfvn/stats/periodic_neighbours.hpp"
 #include "dfvn/stats/radial_distribution.hpp"
 
@@ -153,19 +155,9 @@ class SortedRuns {
 
 std::function<double(std::uint64_t)> order_statistics(SortedRuns& runs) {
   // The ranks summarize_nearest_neighbours and median_of_sorted read, fetched once.
-  const std::uint64_t n = runs.size();
-  const double q_rank = 0.01 * static_cast<double>(n - 1);
-  const auto below = static_cast<std::uint64_t>(q_rank);
-  std::vector<std::uint64_t> ranks{0, below, std::min(below + 1, n - 1), n / 2};
-  if (n % 2 == 0) ranks.push_back(n / 2 - 1);
-  std::sort(ranks.begin(), ranks.end());
-  ranks.erase(std::unique(ranks.begin(), ranks.end()), ranks.end());
-  const std::vector<double> values = runs.at_ranks(ranks);
-  return [ranks, values](std::uint64_t k) {
-    const auto it = std::lower_bound(ranks.begin(), ranks.end(), k);
-    if (it == ranks.end() || *it != k) throw std::logic_error("an order statistic that was not fetched");
-    return values[static_cast<std::size_t>(it - ranks.begin())];
-  };
+  std::vector<std::uint64_t> ranks = nearest_neighbour_summary_ranks(runs.size());
+  std::vector<double> values = runs.at_ranks(ranks);
+  return sorted_at_ranks(std::move(ranks), std::move(values));
 }
 
 double median_of_runs(SortedRuns& runs) {

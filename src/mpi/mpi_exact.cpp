@@ -5,8 +5,10 @@
 #include <exception>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "dfvn/mpi/mpi_sampling.hpp"
+#include "dfvn/stats/nearest_neighbour.hpp"
 
 namespace dfvn {
 
@@ -90,18 +92,9 @@ std::vector<double> select_ranks(MPI_Comm comm, const std::vector<double>& sorte
 std::function<double(std::uint64_t)> distributed_order_statistics(MPI_Comm comm, const std::vector<double>& sorted,
                                                                   std::uint64_t n) {
   // The ranks summarize_nearest_neighbours and a median read (as the one-process stream's order_statistics).
-  const double q_rank = 0.01 * static_cast<double>(n - 1);
-  const auto below = static_cast<std::uint64_t>(q_rank);
-  std::vector<std::uint64_t> ranks{0, below, std::min(below + 1, n - 1), n / 2};
-  if (n % 2 == 0) ranks.push_back(n / 2 - 1);
-  std::sort(ranks.begin(), ranks.end());
-  ranks.erase(std::unique(ranks.begin(), ranks.end()), ranks.end());
-  const std::vector<double> values = select_ranks(comm, sorted, ranks);
-  return [ranks, values](std::uint64_t k) {
-    const auto it = std::lower_bound(ranks.begin(), ranks.end(), k);
-    if (it == ranks.end() || *it != k) throw std::logic_error("an order statistic that was not selected");
-    return values[static_cast<std::size_t>(it - ranks.begin())];
-  };
+  std::vector<std::uint64_t> ranks = nearest_neighbour_summary_ranks(n);
+  std::vector<double> values = select_ranks(comm, sorted, ranks);
+  return sorted_at_ranks(std::move(ranks), std::move(values));
 }
 
 double distributed_median(MPI_Comm comm, const std::vector<double>& sorted, std::uint64_t n) {

@@ -110,6 +110,24 @@ NearestNeighbourSummary summarize_nearest_neighbours(std::vector<double> distanc
                                       manifold_dimension);
 }
 
+std::vector<std::uint64_t> nearest_neighbour_summary_ranks(std::uint64_t n) {
+  if (n == 0) return {};
+  const auto below = static_cast<std::uint64_t>(0.01 * static_cast<double>(n - 1));
+  std::vector<std::uint64_t> ranks{0, below, std::min(below + 1, n - 1), n / 2};
+  if (n % 2 == 0) ranks.push_back(n / 2 - 1);
+  std::sort(ranks.begin(), ranks.end());
+  ranks.erase(std::unique(ranks.begin(), ranks.end()), ranks.end());
+  return ranks;
+}
+
+std::function<double(std::uint64_t)> sorted_at_ranks(std::vector<std::uint64_t> ranks, std::vector<double> values) {
+  return [ranks = std::move(ranks), values = std::move(values)](std::uint64_t k) {
+    const auto it = std::lower_bound(ranks.begin(), ranks.end(), k);
+    if (it == ranks.end() || *it != k) throw std::logic_error("an order statistic that was not fetched");
+    return values[static_cast<std::size_t>(it - ranks.begin())];
+  };
+}
+
 NearestNeighbourSummary summarize_nearest_neighbours(std::uint64_t count, double sum,
                                                      const std::function<double(std::uint64_t)>& sorted_at,
                                                      double measure, int manifold_dimension) {

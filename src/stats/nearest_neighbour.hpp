@@ -41,6 +41,13 @@ struct NearestNeighbourSummary {
   double median_scaled = 0.0;
 };
 
+// The ranks of n sorted distances that summarize_nearest_neighbours(count, sum, sorted_at, ...) reads (the
+// minimum, q01's two neighbours, the median's one or two), sorted and without repeats; and a sorted_at that
+// answers those ranks from their values (any other rank is a logic_error). For selections over data that
+// is not in one sorted array (sample --stream's sorted runs, dfvn-sample-mpi's ranks).
+std::vector<std::uint64_t> nearest_neighbour_summary_ranks(std::uint64_t n);
+std::function<double(std::uint64_t)> sorted_at_ranks(std::vector<std::uint64_t> ranks, std::vector<double> values);
+
 NearestNeighbourSummary summarize_nearest_neighbours(std::vector<double> distances, const PointSet& points);
 // The same for points on a manifold of `manifold_dimension` and `measure` (volume or area): the
 // median is scaled by (points / measure)^(1 / manifold_dimension).
