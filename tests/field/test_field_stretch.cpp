@@ -58,7 +58,10 @@ TYPED_TEST(FieldStretchTest, MeetsTheDivergenceTargetsForEveryBasis) {
       if (N >= 6 && s < 1.0 && basis != NoiseBasis::turning_bands) continue;  // the time the suite takes
       DiagnosisOptions options;
       options.dimension = N;
-      options.points = 20000;
+      // The ASan + UBSan build measures the lattice bases (2^N corners: 7D-8D took 140 s and more there)
+      // on 1/8 of the points and holds them to the divergence quantiles only; the RMS needs all 20000.
+      const bool reduced = basis != NoiseBasis::turning_bands && testing::kSanitized;
+      options.points = reduced ? testing::sanitizer_scaled(20000, 8) : 20000;
       options.field.noise = basis;
       options.field.transform.stretch_direction = skew_direction(N);
       options.field.transform.stretch_factor = s;
@@ -77,7 +80,9 @@ TYPED_TEST(FieldStretchTest, MeetsTheDivergenceTargetsForEveryBasis) {
         EXPECT_LE(d.divergence_median, 1e-8);
         EXPECT_LE(d.divergence_p95, 1e-6);
       }
-      if ((basis != NoiseBasis::simplex && !separate) || N <= 4) EXPECT_NEAR(d.rms_speed, 1.0, 0.03);
+      if (((basis != NoiseBasis::simplex && !separate) || N <= 4) && !reduced) {
+        EXPECT_NEAR(d.rms_speed, 1.0, 0.03);
+      }
     }
 }
 

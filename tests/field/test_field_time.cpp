@@ -32,7 +32,9 @@ TYPED_TEST(FieldTimeTest, MeetsTheFieldTargetsAtSeveralTimes) {
       if (basis != NoiseBasis::turning_bands && t != 0.37) continue;  // the time the suite takes
       DiagnosisOptions options;
       options.dimension = N;
-      options.points = 20000;
+      // The ASan + UBSan build measures the lattice bases (2^(N+1) corners: 7D-8D quintic gradient took
+      // 130-390 s there) on 1/8 of the points: they are held to the divergence quantiles only here.
+      options.points = basis == NoiseBasis::turning_bands ? 20000 : testing::sanitizer_scaled(20000, 8);
       options.field.noise = basis;
       options.field.transform.time = t;
       const FieldDiagnosis d = diagnose_field(options);
@@ -73,7 +75,9 @@ TYPED_TEST(FieldTimeTest, ContinuousInTime) {
     EXPECT_GT(jump, 0.0) << to_string(basis);
     // simplex-separate's 8D amplitude is measured with a 23% standard error (data/simplex_collapse.md),
     // so only the linear shrinking is asserted for it there.
-    if (basis != NoiseBasis::simplex_separate || N + 1 < 8) EXPECT_LT(jump, 0.1) << to_string(basis);
+    if (basis != NoiseBasis::simplex_separate || N + 1 < 8) {
+      EXPECT_LT(jump, 0.1) << to_string(basis);
+    }
     EXPECT_NEAR(jump / half, 2.0, 0.2) << to_string(basis);
   }
 }

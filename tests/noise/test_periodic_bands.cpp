@@ -13,10 +13,7 @@ namespace dfvn {
 namespace {
 
 template <typename T>
-class PeriodicBandsTest : public ::testing::Test {
- protected:
-  static constexpr int N = T::value;
-};
+class PeriodicBandsTest : public ::testing::Test {};
 TYPED_TEST_SUITE(PeriodicBandsTest, testing::AllDimensions);
 
 constexpr std::uint64_t kSeed = 11;
@@ -24,7 +21,7 @@ constexpr std::uint64_t kSeed = 11;
 // f(x + e_j) = f(x) and grad f(x + e_j) = grad f(x) to 1e-12, for random x in [-3, 3]^N, every axis and
 // shifts of one and of several periods.
 TYPED_TEST(PeriodicBandsTest, RepeatsWithPeriodOneAlongEveryAxis) {
-  constexpr int N = TestFixture::N;
+  constexpr int N = TypeParam::value;
   for (const double frequency : {0.3, 1.2, 4.0, 17.0}) {
     const TurningBandsNoise<N> noise(kSeed, typename TurningBandsNoise<N>::Periodic{frequency});
     double worst = 0.0, size = 0.0;
@@ -66,7 +63,7 @@ double central_difference_error(const TurningBandsNoise<N>& noise, const Vec<N>&
 }
 
 TYPED_TEST(PeriodicBandsTest, GradientMatchesCentralDifferences) {
-  constexpr int N = TestFixture::N;
+  constexpr int N = TypeParam::value;
   const TurningBandsNoise<N> noise(kSeed, typename TurningBandsNoise<N>::Periodic{2.5});
   double worst = 0.0;
   for (std::uint64_t i = 0; i < 100; ++i)
@@ -78,7 +75,7 @@ TYPED_TEST(PeriodicBandsTest, GradientMatchesCentralDifferences) {
 // the realised frequency, wavenumber / 2 pi, is within 10% of the asked one from about 1.2 cycles per
 // unit length on; below, the lowest periodic frequency (knot vectors 2 e_j) is what there is.
 TYPED_TEST(PeriodicBandsTest, KnotVectorsAreEvenIntegersAndTheFrequencyFollows) {
-  constexpr int N = TestFixture::N;
+  constexpr int N = TypeParam::value;
   for (const double frequency : {0.2, 1.2, 2.0, 6.0, 30.0}) {
     const TurningBandsNoise<N> noise(kSeed, typename TurningBandsNoise<N>::Periodic{frequency});
     EXPECT_TRUE(noise.periodic());

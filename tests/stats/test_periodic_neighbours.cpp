@@ -72,9 +72,9 @@ TEST(PeriodicRdf, UniformRandomPointsGiveOne) {
     const RdfCurve c = radial_distribution(p, o, 1, 2);
     const double volume = 1.0;
     for (std::size_t k = 0; k < c.g.size(); ++k) {
-      const double lo = k * o.r_max / o.bins, hi = (k + 1) * o.r_max / o.bins;
+      const double lo = static_cast<double>(k) * o.r_max / o.bins, hi = static_cast<double>(k + 1) * o.r_max / o.bins;
       const double shell = unit_ball_volume(dimension) * (std::pow(hi, dimension) - std::pow(lo, dimension));
-      const double expected_pairs = static_cast<double>(c.queries) * (p.size() - 1) * shell / volume;
+      const double expected_pairs = static_cast<double>(c.queries) * static_cast<double>(p.size() - 1) * shell / volume;
       const double standard_error = std::sqrt(2.0 / expected_pairs);
       EXPECT_NEAR(c.g[k], 1.0, 5.0 * standard_error + 1e-3) << dimension << "D bin " << k;
     }
