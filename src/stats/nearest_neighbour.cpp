@@ -105,8 +105,19 @@ NearestNeighbourSummary summarize_nearest_neighbours(std::vector<double> distanc
   if (distances.empty()) throw std::invalid_argument("no distances to summarise");
   double sum = 0.0;  // in index order: the same for any thread count
   for (double d : distances) sum += d;
-  std::sort(distances.begin(), distances.end());
-  return summarize_nearest_neighbours(distances.size(), sum, [&](std::uint64_t k) { return distances[k]; }, measure,
+  // Only the order statistics the summary reads, by selection in ascending rank order (each one splits
+  // off the part below it): the values a full sort puts there, in linear time.
+  const std::vector<std::uint64_t> ranks = nearest_neighbour_summary_ranks(distances.size());
+  std::vector<double> values;
+  values.reserve(ranks.size());
+  auto from = distances.begin();
+  for (const std::uint64_t k : ranks) {
+    const auto at = distances.begin() + static_cast<std::ptrdiff_t>(k);
+    std::nth_element(from, at, distances.end());
+    values.push_back(*at);
+    from = at + 1;
+  }
+  return summarize_nearest_neighbours(distances.size(), sum, sorted_at_ranks(ranks, std::move(values)), measure,
                                       manifold_dimension);
 }
 

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <random>
+#include <vector>
 #include <string>
 
 #include "dfvn/core/dimension.hpp"
@@ -52,6 +54,28 @@ TEST(NearestNeighbour, MedianOfEvenCountAveragesTheMiddle) {
   EXPECT_DOUBLE_EQ(s.median, 2.5);
   EXPECT_DOUBLE_EQ(s.mean, 2.5);
   EXPECT_DOUBLE_EQ(s.min, 1.0);
+}
+
+// The summary selects its order statistics (nth_element): the same bits as reading them off a full sort,
+// for every count from 1 to 300, with many ties and in shuffled orders.
+TEST(NearestNeighbour, SummarySelectsWhatASortGives) {
+  std::mt19937_64 rng(5);
+  for (std::size_t n = 1; n <= 300; ++n) {
+    std::vector<double> d(n);
+    for (double& v : d) v = static_cast<double>(rng() % 17) * 0.125 + (rng() % 3 == 0 ? 1e-3 * static_cast<double>(rng() % 5) : 0.0);
+    std::vector<double> sorted = d;
+    std::sort(sorted.begin(), sorted.end());
+    double sum = 0.0;
+    for (double v : d) sum += v;
+    const auto expected = summarize_nearest_neighbours(n, sum, [&](std::uint64_t k) { return sorted[k]; }, 2.0, 3);
+    const auto got = summarize_nearest_neighbours(d, 2.0, 3);
+    EXPECT_EQ(got.points, expected.points);
+    EXPECT_EQ(got.min, expected.min) << n;
+    EXPECT_EQ(got.q01, expected.q01) << n;
+    EXPECT_EQ(got.median, expected.median) << n;
+    EXPECT_EQ(got.mean, expected.mean) << n;
+    EXPECT_EQ(got.median_scaled, expected.median_scaled) << n;
+  }
 }
 
 TEST(NearestNeighbour, IndependentOfThreads) {
