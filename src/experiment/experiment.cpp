@@ -297,14 +297,14 @@ PointSet generate_points(const SampleConfig& config, const MethodPlan& plan, Met
       if (config.cnj.domain != CnjDomain::ball)  // the ball's clipped lattice has no K^N neighbour structure
         result.displacement = summarize_lattice_displacements(config.dimension, config.grid,
                                                               cnj_lattice(lattice, config.cnj.domain).spacing(),
-                                                              r.displacements);
+                                                              r.displacements, {}, config.threads);
       return std::move(r.points);
     }
     case Method::jitter: {
       facts.half_width = jitter_half_width(lattice);
       PointSet points = jittered_lattice(lattice, config.seed, config.threads);
       result.displacement = summarize_lattice_displacements(config.dimension, config.grid, lattice.spacing(),
-                                                            lattice_displacements(lattice, points));
+                                                            lattice_displacements(lattice, points), {}, config.threads);
       return points;
     }
     case Method::jitter_matched: {
@@ -319,7 +319,7 @@ PointSet generate_points(const SampleConfig& config, const MethodPlan& plan, Met
       facts.half_width = j.half_width;
       result.notes = fmt::format("CNJ's RMS displacement; {}", torus ? "wrapped on the torus" : "reflected at the faces");
       result.displacement =
-          summarize_lattice_displacements(config.dimension, config.grid, cnj_sites.spacing(), j.displacements);
+          summarize_lattice_displacements(config.dimension, config.grid, cnj_sites.spacing(), j.displacements, {}, config.threads);
       return std::move(j.points);
     }
     case Method::random:

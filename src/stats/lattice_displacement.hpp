@@ -25,10 +25,12 @@ struct LatticeDisplacementSummary {
 // displacements: K^N x N, row-major, u_i = x_i - site_i for lattice point i (mixed radix, axis 0
 // fastest, as LatticeSpec::point). Only the points with `include[i]` count towards rms, median and
 // fraction_unmoved (all if `include` is empty); neighbour_disorder and lattice_order use every point.
-// Deterministic: sums in index order.
+// Deterministic: sums in index order, the same bits for any `threads` (the axes' sums and the lengths'
+// pass run side by side, each in one thread, from 2^20 coordinates on).
 LatticeDisplacementSummary summarize_lattice_displacements(int dimension, int grid, double spacing,
                                                            const std::vector<double>& displacements,
-                                                           const std::vector<unsigned char>& include = {});
+                                                           const std::vector<unsigned char>& include = {},
+                                                           int threads = 1);
 
 // The sums behind the summary, each a sum in index order (per axis for the neighbour pairs and the Bragg
 // amplitudes), so that a run made in slabs of whole layers (experiment/streamed_sampling.hpp) adds the same
