@@ -270,7 +270,7 @@ constexpr bool kBatched = D <= 3;
 // Two builds of the same code: 4 lanes (SSE2, every x86-64; the only build elsewhere) and, on x86-64,
 // 8 lanes with AVX2, chosen at run time. They give the same bits: integer operations, a double built
 // from its bits minus 1 (exact), then one multiply and one add, rounded alike because this file is
-// compiled with -ffp-contract=off (CMakeLists.txt).
+// compiled (as every file) with -ffp-contract=off (CMakeLists.txt).
 template <std::size_t D, Scramble S>
 void fill_block(const SobolBlocks& b, std::uint64_t begin, std::uint64_t end) {
   if constexpr (S == Scramble::owen && kBatched<D>) fill_block_batched_with<D>(b, begin, end);
