@@ -362,8 +362,10 @@ class NearestStream {
     for (int b = 0; b < static_cast<int>(buckets_.size()); ++b) {
       if (counts_[static_cast<std::size_t>(b)] == 0) continue;
       const LoadedBucket l = load_bucket(b, halo);
-      if (l.set.size() > std::numeric_limits<std::uint32_t>::max())
-        throw std::invalid_argument("--stream: a slab with its RDF halo holds more than 2^32 points; raise --slabs");
+      if (l.set.size() > std::numeric_limits<std::uint32_t>::max())  // more slabs help only when the slab is the bulk of it
+        throw std::invalid_argument(fmt::format(
+            "--stream: slab {} with its RDF halo holds {} points, more than the RDF's 2^32 - 1: lower --rdf-max{}", b + 1,
+            l.set.size(), 2 * l.queries > l.set.size() ? " or raise --slabs" : ""));
       std::vector<std::uint32_t> rows;
       for (std::uint64_t q = 0; q < l.queries; ++q)
         if (is_query(l.index[q])) rows.push_back(static_cast<std::uint32_t>(q));
@@ -750,6 +752,37 @@ double streamed_peak_bytes(const SampleConfig& config, int slabs) {
     peak = std::max(peak, std::min(points + halo, total) * (16.0 * config.dimension + 48.0));
   }
   return peak;
+}
+
+std::string streamed_memory_advice(const SampleConfig& config, int slabs, double limit) {
+  // The slab counts a run may take (stream_slab_count's): the divisors of K for the lattice methods, else
+  // up to the fewest points (the automatic count tries powers of two up to 2^20 and then that).
+  const bool lattice = std::any_of(config.methods.begin(), config.methods.end(), is_lattice);
+  std::uint64_t fewest_points = std::numeric_limits<std::uint64_t>::max();
+  for (Method m : config.methods) fewest_points = std::min(fewest_points, plan_method(config, m).requested);
+  std::vector<int> counts;
+  if (lattice) {
+    for (int s = slabs + 1; s <= config.grid; ++s)
+      if (config.grid % s == 0) counts.push_back(s);
+  } else {
+    const auto most = static_cast<int>(std::min<std::uint64_t>(fewest_points, std::uint64_t{1} << 30));
+    for (long long s = 2LL * slabs; s < most; s *= 2) counts.push_back(static_cast<int>(s));
+    if (most > slabs) counts.push_back(most);
+  }
+  const auto fits_with_more_slabs = [&](const SampleConfig& c) {
+    return std::any_of(counts.begin(), counts.end(), [&](int s) { return streamed_peak_bytes(c, s) <= limit; });
+  };
+  if (fits_with_more_slabs(config)) return "raise --slabs or --max-memory GIB";
+  if (config.compute_rdf && config.compute_statistics) {
+    // The RDF's halo (r_max each side, over as many slabs as it spans) is what does not fit when the run
+    // without it would fit with these slabs or more.
+    SampleConfig without = config;
+    without.compute_rdf = false;
+    if (streamed_peak_bytes(without, slabs) <= limit || fits_with_more_slabs(without))
+      return "lower --rdf-max or raise --max-memory GIB";
+  }
+  return lattice && slabs == config.grid ? "raise --max-memory GIB (a slab is one layer of the lattice already)"
+                                          : "raise --max-memory GIB (more slabs would not fit either)";
 }
 
 std::vector<MethodResult> run_streamed_sampling(const SampleConfig& config, int slabs,

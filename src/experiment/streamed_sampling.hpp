@@ -59,6 +59,11 @@ Slab generate_slab(const SampleConfig& config, const MethodPlan& plan, std::uint
 // Bytes a streamed run needs at its peak (about): the largest bucket with its halo, measured.
 double streamed_peak_bytes(const SampleConfig& config, int slabs);
 
+// What helps when a streamed run in `slabs` slabs needs more than `limit` bytes, for the refusal: "raise
+// --slabs" only when a larger slab count the run may take would fit; "lower --rdf-max" when the RDF's halo
+// is what does not fit (the run without it would); else only "raise --max-memory GIB".
+std::string streamed_memory_advice(const SampleConfig& config, int slabs, double limit);
+
 // Runs every configured method in `slabs` slabs (stream_slab_count's), writing each method's points to
 // point_path(method) in `format` when point_path is given. Returns the results without points, as
 // run_sampling(config, false) does (the same statistics to the last bit).
