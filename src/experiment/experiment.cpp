@@ -237,11 +237,11 @@ void SampleConfig::validate() const {
   const double limit = memory_limit_bytes(*this);
   if (stream) {
     if (const std::string why = stream_refusal(*this); !why.empty()) throw std::invalid_argument(why);
-    const double need = streamed_peak_bytes(*this, stream_slab_count(*this, stream_slabs));
+    const int slabs = stream_slab_count(*this, stream_slabs);
+    const double need = streamed_peak_bytes(*this, slabs);
     if (need > limit)
-      throw std::invalid_argument(fmt::format("--stream: a slab with its halo needs about {} of memory (limit {}); raise "
-                                              "--slabs or --max-memory GIB",
-                                              byte_size(need), byte_size(limit)));
+      throw std::invalid_argument(fmt::format("--stream: a slab with its halo needs about {} of memory (limit {}); {}",
+                                              byte_size(need), byte_size(limit), streamed_memory_advice(*this, slabs, limit)));
     return;
   }
   const double need = estimated_peak_bytes(*this);

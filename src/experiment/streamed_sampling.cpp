@@ -303,15 +303,7 @@ class NearestStream {
     const double mean_spacing = domain_.side / std::pow(static_cast<double>(total_), 1.0 / n_);
     for (int b = 0; b < static_cast<int>(buckets_.size()); ++b) {
       if (counts_[static_cast<std::size_t>(b)] == 0) continue;
-      // The halo the last bucket needed, else the mean spacing; a bucket whose neighbours were not all
-      // within it is measured once more with the halo its distances ask for, which holds them all.
-      double h = halo_ > 0.0 ? halo_ : mean_spacing;
-      for (int attempt = 0;; ++attempt) {
-        const double needed = measure_bucket(b, h);
-        if (needed <= h) break;
-        h = attempt < 4 ? needed : 2.0 * h;
-      }
-      halo_ = h;
+      measure_bucket(b, mean_spacing);
       if (progress) progress(static_cast<double>(b + 1) / static_cast<double>(buckets_.size()));
     }
   }
@@ -370,8 +362,10 @@ class NearestStream {
     for (int b = 0; b < static_cast<int>(buckets_.size()); ++b) {
       if (counts_[static_cast<std::size_t>(b)] == 0) continue;
       const LoadedBucket l = load_bucket(b, halo);
-      if (l.set.size() > std::numeric_limits<std::uint32_t>::max())
-        throw std::invalid_argument("--stream: a slab with its RDF halo holds more than 2^32 points; raise --slabs");
+      if (l.set.size() > std::numeric_limits<std::uint32_t>::max())  // more slabs help only when the slab is the bulk of it
+        throw std::invalid_argument(fmt::format(
+            "--stream: slab {} with its RDF halo holds {} points, more than the RDF's 2^32 - 1: lower --rdf-max{}", b + 1,
+            l.set.size(), 2 * l.queries > l.set.size() ? " or raise --slabs" : ""));
       std::vector<std::uint32_t> rows;
       for (std::uint64_t q = 0; q < l.queries; ++q)
         if (is_query(l.index[q])) rows.push_back(static_cast<std::uint32_t>(q));
@@ -393,39 +387,45 @@ class NearestStream {
     std::uint64_t queries = 0;
     double lo = 0.0, hi = 0.0;
     bool whole_below = false, whole_above = false;  // no point lies below lo / at or above hi unloaded
+    bool wraps_whole = false;                       // periodic_ and [lo, hi) covers the torus
   };
+  // Whether a point of last coordinate z lies in [lo, hi) (on the torus, z or z -+ side); `wraps_whole`:
+  // the range covers the whole torus.
+  bool in_range(double z, double lo, double hi, bool wraps_whole) const {
+    if (wraps_whole || (z >= lo && z < hi)) return true;
+    const double side = domain_.side;
+    return periodic_ && ((z + side >= lo && z + side < hi) || (z - side >= lo && z - side < hi));
+  }
+  // The records of bucket c, a block at a time: take(record) for each (index bits, then N coordinates).
+  template <typename Take>
+  void read_bucket(int c, Take take) {
+    const std::size_t record = static_cast<std::size_t>(n_) + 1;
+    constexpr std::uint64_t kRecords = 1 << 15;
+    std::vector<double> block;
+    const std::uint64_t count = counts_[static_cast<std::size_t>(c)];
+    for (std::uint64_t first = 0; first < count; first += kRecords) {
+      const std::uint64_t n = std::min(kRecords, count - first);
+      block.resize(n * record);
+      buckets_[static_cast<std::size_t>(c)]->read_at(first * record * sizeof(double), block.data(), block.size() * sizeof(double));
+      for (std::uint64_t k = 0; k < n; ++k) take(block.data() + k * record);
+    }
+  }
   LoadedBucket load_bucket(int b, double h) {
     LoadedBucket l;
     l.lo = edge(b) - h;
     l.hi = edge(b + 1) + h;
-    const bool wraps_whole = periodic_ && l.hi - l.lo >= domain_.side;
-    l.whole_below = wraps_whole || (!periodic_ && l.lo <= zmin_);
-    l.whole_above = wraps_whole || (!periodic_ && l.hi > zmax_);
+    l.wraps_whole = periodic_ && l.hi - l.lo >= domain_.side;
+    l.whole_below = l.wraps_whole || (!periodic_ && l.lo <= zmin_);
+    l.whole_above = l.wraps_whole || (!periodic_ && l.hi > zmax_);
     l.set = PointSet{n_, {}, domain_};
-    const std::size_t record = static_cast<std::size_t>(n_) + 1;
-    const double lo = l.lo, hi = l.hi, side = domain_.side;
-    const auto in_halo = [&](double z) {
-      if (wraps_whole || (z >= lo && z < hi)) return true;
-      return periodic_ && ((z + side >= lo && z + side < hi) || (z - side >= lo && z - side < hi));
-    };
-    std::vector<double> block;
     auto load = [&](int c, bool everything) {
-      constexpr std::uint64_t kRecords = 1 << 15;
-      const std::uint64_t count = counts_[static_cast<std::size_t>(c)];
-      for (std::uint64_t first = 0; first < count; first += kRecords) {
-        const std::uint64_t n = std::min(kRecords, count - first);
-        block.resize(n * record);
-        buckets_[static_cast<std::size_t>(c)]->read_at(first * record * sizeof(double), block.data(),
-                                                       block.size() * sizeof(double));
-        for (std::uint64_t k = 0; k < n; ++k) {
-          const double* r = block.data() + k * record;
-          if (!everything && !in_halo(r[n_])) continue;
-          std::uint64_t i;
-          std::memcpy(&i, r, sizeof i);
-          l.index.push_back(i);
-          l.set.coordinates.insert(l.set.coordinates.end(), r + 1, r + 1 + n_);
-        }
-      }
+      read_bucket(c, [&](const double* r) {
+        if (!everything && !in_range(r[n_], l.lo, l.hi, l.wraps_whole)) return;
+        std::uint64_t i;
+        std::memcpy(&i, r, sizeof i);
+        l.index.push_back(i);
+        l.set.coordinates.insert(l.set.coordinates.end(), r + 1, r + 1 + n_);
+      });
     };
     // The buckets within reach of b (around the torus when periodic_), each once.
     const int count = static_cast<int>(buckets_.size());
@@ -451,35 +451,38 @@ class NearestStream {
     return l;
   }
 
-  // Loads bucket b and every point within h of it, measures, and writes bucket b's distances if every one
-  // is certainly the nearest (closer than the loaded region's edge). Returns the halo that holds every
-  // distance found (at most h when they were written): a point's true neighbour is no farther than the
-  // one found. On the torus (periodic_) minimum-image distances, as periodic_nearest_neighbour_distances
-  // measures the whole set: the halo's points keep their coordinates, so each distance is the same bits.
-  double measure_bucket(int b, double h) {
+  // Loads bucket b (its points first) and every point within h of it, measures bucket b's points against
+  // them all (the tree over every loaded point, only the bucket's points queried), and writes their
+  // distances. A distance no farther than the point's margin to the loaded region's edge is certainly the
+  // nearest. For the others (the few near the edges whose neighbour may lie beyond the halo) the distance
+  // found is an upper bound on the true one, so the true neighbour lies within that distance of them in
+  // the last coordinate: the points not loaded within those windows are read and the unsure points
+  // measured again against them alone, keeping the smaller distance. Every distance is distance_between's
+  // (on the torus periodic_distance_between's) of the nearest point, so it is the in-memory run's bits:
+  // the minimum over a set that holds the nearest point.
+  void measure_bucket(int b, double h) {
     LoadedBucket l = load_bucket(b, h);
-    const std::uint64_t queries = l.queries;
-    const PointSet& set = l.set;
-    if (set.size() < 2) {
+    while (l.set.size() < 2) {  // one point and an empty halo: widen it until it holds another
       if (l.whole_below && l.whole_above) throw std::invalid_argument("the statistics need at least 2 points");
-      return 2.0 * h;
+      h *= 2.0;
+      l = load_bucket(b, h);
     }
-    const std::vector<double> d = periodic_ ? periodic_nearest_neighbour_distances(set, config_.threads)
-                                            : nearest_neighbour_distances(set, config_.knn, config_.threads);
+    const std::uint64_t queries = l.queries;
+    std::vector<double> d = periodic_ ? periodic_nearest_neighbour_distances_of_first(l.set, queries, config_.threads)
+                                      : nearest_neighbour_distances_of_first(l.set, queries, config_.knn, config_.threads);
     // The margins carry a relative slack far above the rounding of an edge and a difference.
     constexpr double kSlack = 1e-9;
     const double width = l.hi - l.lo;
-    double needed = h;
+    std::vector<std::uint64_t> unsure;
     for (std::uint64_t q = 0; q < queries; ++q) {
       // A point outside [lo, hi) (and, on the torus, its images) is at least this far from the query in
       // its last coordinate.
-      const double z = set.point(q)[n_ - 1];
+      const double z = l.set.point(q)[n_ - 1];
       const double margin = std::min(l.whole_below ? std::numeric_limits<double>::infinity() : z - l.lo,
                                      l.whole_above ? std::numeric_limits<double>::infinity() : l.hi - z);
-      if (!(d[q] <= margin - kSlack * width))  // the halo that would hold this point's neighbour, with room
-        needed = std::max(needed, (h + d[q] - margin) * (1.0 + 1e-6) + 2.0 * kSlack * width);
+      if (!(d[q] <= margin - kSlack * width)) unsure.push_back(q);
     }
-    if (needed > h) return needed;
+    if (!unsure.empty()) remeasure(b, l, unsure, d);
     std::vector<std::pair<std::uint64_t, double>> pairs(queries);
     for (std::uint64_t q = 0; q < queries; ++q) pairs[q] = {l.index[q], d[q]};
     std::sort(pairs.begin(), pairs.end());
@@ -490,7 +493,56 @@ class NearestStream {
     }
     pairs_[static_cast<std::size_t>(b)]->write(out.data(), out.size() * sizeof(double));
     measured_[static_cast<std::size_t>(b)] = queries;
-    return h;
+  }
+
+  // The unsure points of bucket b (rows `unsure` of l.set, with their distances d over l.set): each against
+  // the points that l did not load and whose last coordinate lies within d (and a slack) of its own, on the
+  // torus around it. d[q] becomes the smaller of the two distances.
+  void remeasure(int b, const LoadedBucket& l, const std::vector<std::uint64_t>& unsure, std::vector<double>& d) {
+    const double side = domain_.side;
+    std::vector<std::pair<double, double>> windows;
+    for (std::uint64_t q : unsure) {
+      const double z = l.set.point(q)[n_ - 1], reach = d[q] * (1.0 + 1e-6) + 1e-9 * side;
+      windows.emplace_back(z - reach, z + reach);
+    }
+    std::sort(windows.begin(), windows.end());
+    std::vector<std::pair<double, double>> merged;
+    for (const auto& w : windows)
+      if (!merged.empty() && w.first <= merged.back().second) merged.back().second = std::max(merged.back().second, w.second);
+      else merged.push_back(w);
+    const auto in_window = [&](double z) {
+      const auto it = std::upper_bound(merged.begin(), merged.end(), std::make_pair(z, std::numeric_limits<double>::infinity()));
+      return it != merged.begin() && z <= std::prev(it)->second;
+    };
+    const auto near = [&](double z) {
+      return in_window(z) || (periodic_ && (in_window(z - side) || in_window(z + side)));
+    };
+    // The set: the unsure points first, then the candidates from the other buckets (bucket b is loaded
+    // whole). A bucket is read if its range, widened by a slack (its first and last take every point below
+    // and above the box), meets a window.
+    PointSet set{n_, {}, domain_};
+    for (std::uint64_t q : unsure) set.coordinates.insert(set.coordinates.end(), l.set.point(q), l.set.point(q) + n_);
+    const int count = static_cast<int>(buckets_.size());
+    const double slack = 1e-9 * side;
+    for (int c = 0; c < count; ++c) {
+      if (c == b || counts_[static_cast<std::size_t>(c)] == 0) continue;
+      const double lo = c == 0 ? -std::numeric_limits<double>::infinity() : edge(c) - slack;
+      const double hi = c == count - 1 ? std::numeric_limits<double>::infinity() : edge(c + 1) + slack;
+      bool meets = false;
+      for (double shift : {0.0, -side, side}) {
+        if (shift != 0.0 && !periodic_) continue;
+        for (const auto& w : merged) meets = meets || (w.first + shift <= hi && w.second + shift >= lo);
+      }
+      if (!meets) continue;
+      read_bucket(c, [&](const double* r) {
+        const double z = r[n_];
+        if (!in_range(z, l.lo, l.hi, l.wraps_whole) && near(z)) set.coordinates.insert(set.coordinates.end(), r + 1, r + 1 + n_);
+      });
+    }
+    if (set.size() == unsure.size()) return;  // nothing beyond the halo within reach: the distances stand
+    const std::vector<double> again = periodic_ ? periodic_nearest_neighbour_distances_of_first(set, unsure.size(), config_.threads)
+                                                : nearest_neighbour_distances_of_first(set, unsure.size(), config_.knn, config_.threads);
+    for (std::size_t j = 0; j < unsure.size(); ++j) d[unsure[j]] = std::min(d[unsure[j]], again[j]);
   }
 
   const SampleConfig& config_;
@@ -503,7 +555,6 @@ class NearestStream {
   std::vector<std::uint64_t> measured_;
   SortedRuns runs_;
   std::uint64_t total_ = 0;
-  double halo_ = 0.0;  // the last bucket's halo
   double zmin_ = std::numeric_limits<double>::infinity(), zmax_ = -std::numeric_limits<double>::infinity();
 };
 
@@ -701,6 +752,37 @@ double streamed_peak_bytes(const SampleConfig& config, int slabs) {
     peak = std::max(peak, std::min(points + halo, total) * (16.0 * config.dimension + 48.0));
   }
   return peak;
+}
+
+std::string streamed_memory_advice(const SampleConfig& config, int slabs, double limit) {
+  // The slab counts a run may take (stream_slab_count's): the divisors of K for the lattice methods, else
+  // up to the fewest points (the automatic count tries powers of two up to 2^20 and then that).
+  const bool lattice = std::any_of(config.methods.begin(), config.methods.end(), is_lattice);
+  std::uint64_t fewest_points = std::numeric_limits<std::uint64_t>::max();
+  for (Method m : config.methods) fewest_points = std::min(fewest_points, plan_method(config, m).requested);
+  std::vector<int> counts;
+  if (lattice) {
+    for (int s = slabs + 1; s <= config.grid; ++s)
+      if (config.grid % s == 0) counts.push_back(s);
+  } else {
+    const auto most = static_cast<int>(std::min<std::uint64_t>(fewest_points, std::uint64_t{1} << 30));
+    for (long long s = 2LL * slabs; s < most; s *= 2) counts.push_back(static_cast<int>(s));
+    if (most > slabs) counts.push_back(most);
+  }
+  const auto fits_with_more_slabs = [&](const SampleConfig& c) {
+    return std::any_of(counts.begin(), counts.end(), [&](int s) { return streamed_peak_bytes(c, s) <= limit; });
+  };
+  if (fits_with_more_slabs(config)) return "raise --slabs or --max-memory GIB";
+  if (config.compute_rdf && config.compute_statistics) {
+    // The RDF's halo (r_max each side, over as many slabs as it spans) is what does not fit when the run
+    // without it would fit with these slabs or more.
+    SampleConfig without = config;
+    without.compute_rdf = false;
+    if (streamed_peak_bytes(without, slabs) <= limit || fits_with_more_slabs(without))
+      return "lower --rdf-max or raise --max-memory GIB";
+  }
+  return lattice && slabs == config.grid ? "raise --max-memory GIB (a slab is one layer of the lattice already)"
+                                          : "raise --max-memory GIB (more slabs would not fit either)";
 }
 
 std::vector<MethodResult> run_streamed_sampling(const SampleConfig& config, int slabs,

@@ -10,15 +10,17 @@
 // pairs across a slab boundary with the previous slab's last layer kept).
 //
 // Statistics: the points are also spilled to S temporary buckets by their last coordinate; each bucket is
-// measured with a halo of the points within h of it from the others (h starts at the mean spacing and
-// doubles until every nearest neighbour found is closer than the halo's edge, so the distances are
-// exact), the distances go to a temporary file by point index, and are then summed in index order and
-// sorted per slab: min, q01 and the median are exact selections over those sorted runs. --periodic: the
-// same with minimum-image distances on the torus of the box, the halo wrapping around (the first and last
-// buckets are neighbours; with one or two buckets each point is loaded once). --rdf: each bucket's query
-// points (chosen by point index, as in memory) counted against a halo a little wider than r_max, over as
-// many buckets as it spans; the pair sums are exact integers of fixed point (stats/radial_distribution.hpp),
-// so the curve is the in-memory one to the bit.
+// measured with a halo of the points within one mean spacing of it from the others (a KD-tree over the
+// bucket and its halo, queried at the bucket's points only: stats' *_of_first); a point whose nearest
+// neighbour found is farther than the halo's edge is measured again against the points beyond the halo
+// within that distance of it in the last coordinate, so the distances are exact. They go to a temporary
+// file by point index, and are then summed in index order and sorted per slab: min, q01 and the median
+// are exact selections over those sorted runs. --periodic: the same with minimum-image distances on the
+// torus of the box, the halo wrapping around (the first and last buckets are neighbours; with one or two
+// buckets each point is loaded once). --rdf: each bucket's query points (chosen by point index, as in
+// memory) counted against a halo a little wider than r_max, over as many buckets as it spans; the pair
+// sums are exact integers of fixed point (stats/radial_distribution.hpp), so the curve is the in-memory
+// one to the bit.
 //
 // Memory is O(slab + halo); the temporaries (point count x (N + 2) x 8 bytes) go to $TMPDIR and are
 // removed on every exit. Not streamed: pds, jitter-matched, halton, lhs, --domain ball, --on sphere,
@@ -56,6 +58,11 @@ Slab generate_slab(const SampleConfig& config, const MethodPlan& plan, std::uint
 
 // Bytes a streamed run needs at its peak (about): the largest bucket with its halo, measured.
 double streamed_peak_bytes(const SampleConfig& config, int slabs);
+
+// What helps when a streamed run in `slabs` slabs needs more than `limit` bytes, for the refusal: "raise
+// --slabs" only when a larger slab count the run may take would fit; "lower --rdf-max" when the RDF's halo
+// is what does not fit (the run without it would); else only "raise --max-memory GIB".
+std::string streamed_memory_advice(const SampleConfig& config, int slabs, double limit);
 
 // Runs every configured method in `slabs` slabs (stream_slab_count's), writing each method's points to
 // point_path(method) in `format` when point_path is given. Returns the results without points, as

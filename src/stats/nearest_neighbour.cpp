@@ -20,8 +20,10 @@
 
 namespace dfvn {
 
-// FLANN backend, in its own translation unit (stats/knn_flann.cpp) to keep FLANN's headers apart.
-std::vector<double> nearest_neighbour_distances_flann(const PointSet& points, int threads, const FractionProgress& progress);
+// FLANN backend, in its own translation unit (stats/knn_flann.cpp) to keep FLANN's headers apart: the
+// first `queries` points queried against all of them.
+std::vector<double> nearest_neighbour_distances_flann(const PointSet& points, std::size_t queries, int threads,
+                                                      const FractionProgress& progress);
 
 KnnBackend parse_knn_backend(std::string_view name) {
   if (name == "nanoflann") return KnnBackend::nanoflann;
@@ -33,25 +35,30 @@ std::string_view to_string(KnnBackend backend) { return backend == KnnBackend::n
 
 namespace {
 
-// nanoflann builds the tree; the queries are stats/nearest_other.hpp's, made a leaf at a time in the tree's
-// order and scattered back to the input's indices.
+// nanoflann builds the tree over every point; the queries (the first `queries` points) are
+// stats/nearest_other.hpp's, made a leaf at a time in the tree's order and scattered back to the input's
+// indices.
 template <int N>
-std::vector<double> nearest_neighbour_distances_nanoflann(const PointSet& points, int threads, const FractionProgress& progress) {
+std::vector<double> nearest_neighbour_distances_nanoflann(const PointSet& points, std::size_t queries, int threads,
+                                                          const FractionProgress& progress) {
+  if (points.size() > std::numeric_limits<std::uint32_t>::max())  // the tree's rows are 32-bit
+    throw std::invalid_argument("the nanoflann nearest-neighbour search takes at most 2^32 - 1 points");
   const PointSetAdaptor<N> adaptor{points};
   const KdTree<N> tree(N, adaptor, kd_tree_params(nearest_other::kLeafSize));  // built by its constructor
   const nearest_other::Index<N> index(points, tree);
   const auto kernel = nearest_other::nearest_rows_kernel<N>(Simd::best);
-  std::vector<double> distances(points.size());
+  std::vector<double> distances(queries);
   const std::uint32_t* original = index.original();
   const auto& leaves = index.leaves();
+  const auto limit = static_cast<std::uint32_t>(queries);
   // Chunks of leaves; progress counts leaves done over leaves.
   neighbour_loop::for_every_chunk(leaves.size(), threads, progress, [&](std::size_t begin, std::size_t end) {
     nearest_other::Scratch scratch = nearest_other::make_scratch(index);
     const std::size_t first = leaves[begin].first, last = leaves[end - 1].first + leaves[end - 1].count;
     std::vector<std::uint32_t> nearest(last - first);
-    kernel(index, begin, end, nearest.data(), scratch);
+    kernel(index, begin, end, limit, nearest.data(), scratch);
     for (std::size_t r = first; r < last; ++r)
-      distances[original[r]] = distance_between(points, original[r], original[nearest[r - first]]);
+      if (original[r] < limit) distances[original[r]] = distance_between(points, original[r], original[nearest[r - first]]);
   });
   return distances;
 }
@@ -60,19 +67,28 @@ std::vector<double> nearest_neighbour_distances_nanoflann(const PointSet& points
 
 std::vector<double> nearest_neighbour_distances(const PointSet& points, KnnBackend backend, int threads,
                                                 const FractionProgress& progress) {
+  return nearest_neighbour_distances_of_first(points, points.size(), backend, threads, progress);
+}
+
+std::vector<double> nearest_neighbour_distances_of_first(const PointSet& points, std::size_t queries, KnnBackend backend,
+                                                         int threads, const FractionProgress& progress) {
   if (points.size() < 2) throw std::invalid_argument("nearest-neighbour statistics need at least 2 points");
+  if (queries > points.size()) throw std::invalid_argument("more query points than points");
   // Squared differences of huge or tiny coordinates overflow or underflow: compute at unit scale
   // (stats/distance_scale.hpp; exact, and no copy for ordinary sets).
   if (const double scale = coordinate_scale(points); scale != 1.0) {
-    std::vector<double> distances = nearest_neighbour_distances(scaled_point_set(points, scale), backend, threads, progress);
+    std::vector<double> distances =
+        nearest_neighbour_distances_of_first(scaled_point_set(points, scale), queries, backend, threads, progress);
     for (double& d : distances) d *= scale;
     return distances;
   }
-  std::vector<double> distances =
-      backend == KnnBackend::flann
-          ? nearest_neighbour_distances_flann(points, threads, progress)
-          : dispatch_dimension(points.dimension,
-                               [&]<int N>() { return nearest_neighbour_distances_nanoflann<N>(points, threads, progress); });
+  std::vector<double> distances;
+  if (queries > 0)
+    distances = backend == KnnBackend::flann
+                    ? nearest_neighbour_distances_flann(points, queries, threads, progress)
+                    : dispatch_dimension(points.dimension, [&]<int N>() {
+                        return nearest_neighbour_distances_nanoflann<N>(points, queries, threads, progress);
+                      });
   if (progress) progress(1.0);
   return distances;
 }

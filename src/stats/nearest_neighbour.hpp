@@ -22,6 +22,15 @@ std::string_view to_string(KnnBackend backend);
 std::vector<double> nearest_neighbour_distances(const PointSet& points, KnnBackend backend, int threads,
                                                 const FractionProgress& progress = {});
 
+// The same distances for the first `queries` points only (rows 0 .. queries - 1), each to its nearest
+// other point among ALL the points: the tree is built over every point and only the first `queries` are
+// queried, so each is bit for bit nearest_neighbour_distances(points, ...)'s value for that point (the
+// same tree, search and distance_between). For a region measured with a halo around it (sample --stream's
+// buckets): the region's points first, the halo's after. Needs at least 2 points and queries <= size()
+// (queries = 0 gives no distances). Independent of thread count. `progress`: the tree's leaves done.
+std::vector<double> nearest_neighbour_distances_of_first(const PointSet& points, std::size_t queries, KnnBackend backend,
+                                                         int threads, const FractionProgress& progress = {});
+
 // Euclidean distance between points i and j, summing squared differences over axes in order. Every
 // backend reports distances through this one function, so they agree to the last bit whenever they
 // find the same neighbour (FLANN's own L2 sums in another order).

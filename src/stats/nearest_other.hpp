@@ -173,21 +173,26 @@ struct Scratch {
 };
 
 // nearest[r - leaves[begin].first] = the row of a nearest other point of row r, for the rows of leaves
-// [begin, end). The lower bound of a subtree's squared distance is the sum over axes of the squared
-// distance to the cut planes that bound it (Arya and Mount's incremental distance, as nanoflann's).
+// [begin, end) whose input point is one of the first `queries` (original()[r] < queries); the other rows
+// are not queried and their slots are left as they were. The lower bound of a subtree's squared distance
+// is the sum over axes of the squared distance to the cut planes that bound it (Arya and Mount's
+// incremental distance, as nanoflann's). Each row's answer is exact, so it does not depend on which rows
+// were queried before it (the warm start only tightens the radius sooner).
 template <int N>
 [[gnu::always_inline]] inline void nearest_rows(const Index<N>& index, std::size_t begin, std::size_t end,
-                                                std::uint32_t* nearest, Scratch<N>& s) {
+                                                std::uint32_t queries, std::uint32_t* nearest, Scratch<N>& s) {
   const auto* nodes = index.nodes().data();
   const auto* leaves = index.leaves().data();
   const double* blocks = index.blocks();
   const std::uint32_t base = leaves[begin].first;
   StackEntry<N>* stack = s.stack.data();
   const std::uint32_t* leaf_of_row = index.leaf_of_row();
+  const std::uint32_t* original = index.original();
   std::uint32_t warm = static_cast<std::uint32_t>(begin);  // the leaf of the previous query's nearest point
   for (std::size_t a = begin; a < end; ++a) {
     const auto& own = leaves[a];
     for (std::uint32_t r = own.first; r < own.first + own.count; ++r) {
+      if (original[r] >= queries) continue;
       constexpr int kBox = Index<N>::kBoxLanes;
       alignas(32) double q[kBox] = {};  // padded with zeros, as the leaves' boxes
       const std::uint32_t j = r - own.first;
@@ -270,20 +275,21 @@ template <int N>
 }
 
 template <int N>
-void nearest_rows_baseline(const Index<N>& index, std::size_t begin, std::size_t end, std::uint32_t* nearest, Scratch<N>& s) {
-  nearest_rows(index, begin, end, nearest, s);
+void nearest_rows_baseline(const Index<N>& index, std::size_t begin, std::size_t end, std::uint32_t queries,
+                           std::uint32_t* nearest, Scratch<N>& s) {
+  nearest_rows(index, begin, end, queries, nearest, s);
 }
 
 #if defined(__x86_64__)
 template <int N>
 [[gnu::target("avx2")]] void nearest_rows_avx2(const Index<N>& index, std::size_t begin, std::size_t end,
-                                               std::uint32_t* nearest, Scratch<N>& s) {
-  nearest_rows(index, begin, end, nearest, s);
+                                               std::uint32_t queries, std::uint32_t* nearest, Scratch<N>& s) {
+  nearest_rows(index, begin, end, queries, nearest, s);
 }
 #endif
 
 template <int N>
-using NearestRows = void (*)(const Index<N>&, std::size_t, std::size_t, std::uint32_t*, Scratch<N>&);
+using NearestRows = void (*)(const Index<N>&, std::size_t, std::size_t, std::uint32_t, std::uint32_t*, Scratch<N>&);
 
 // The widest build this CPU runs (core/simd.hpp); both give the same rows' distances.
 template <int N>

@@ -14,16 +14,17 @@
 
 namespace dfvn::neighbour_loop {
 
-// distances[original[k]] = nearest(k) for every row k of a LeafOrderedTree (stats/kd_tree.hpp), in
-// chunks of consecutive rows on a dynamic schedule: the queries go in the tree's leaf order and the
-// results are scattered back to the input's indices. Queries done are counted per chunk, and only the
-// first thread reports them. Each slot is written by one query, so the result is the same for any
-// thread count and any order.
+// distances[original[k]] = nearest(k) for every row k of a LeafOrderedTree (stats/kd_tree.hpp) whose input
+// point is one of the first `queries` (original[k] < queries; the result has `queries` slots), in chunks
+// of consecutive rows on a dynamic schedule: the queries go in the tree's leaf order and the results are
+// scattered back to the input's indices. Rows done are counted per chunk, and only the first thread
+// reports them. Each slot is written by one query, so the result is the same for any thread count and any
+// order.
 template <typename Nearest>
-std::vector<double> for_every_point(const std::vector<std::uint32_t>& original, int threads, const FractionProgress& progress,
-                                    Nearest nearest) {
+std::vector<double> for_every_point(const std::vector<std::uint32_t>& original, std::size_t queries, int threads,
+                                    const FractionProgress& progress, Nearest nearest) {
   const auto count = static_cast<std::int64_t>(original.size());
-  std::vector<double> distances(static_cast<std::size_t>(count));
+  std::vector<double> distances(queries);
   constexpr std::int64_t kChunk = 4096;
   std::atomic<std::uint64_t> queries_done{0};
 #pragma omp parallel for schedule(dynamic, kChunk) num_threads(resolve_threads(threads))
@@ -32,7 +33,8 @@ std::vector<double> for_every_point(const std::vector<std::uint32_t>& original, 
       const std::uint64_t done = queries_done.fetch_add(static_cast<std::uint64_t>(kChunk), std::memory_order_relaxed);
       if (omp_get_thread_num() == 0) progress(std::min(1.0, static_cast<double>(done) / static_cast<double>(count)));
     }
-    distances[original[static_cast<std::size_t>(k)]] = nearest(static_cast<std::size_t>(k));
+    const std::uint32_t self = original[static_cast<std::size_t>(k)];
+    if (self < queries) distances[self] = nearest(static_cast<std::size_t>(k));
   }
   return distances;
 }

@@ -42,14 +42,15 @@ void check_in_periodic_box(const PointSet& points) {
 namespace {
 
 // 1D: after sorting, a point's nearest neighbour is the one before or after it, around the circle.
-std::vector<double> periodic_distances_1d(const PointSet& points) {
+std::vector<double> periodic_distances_1d(const PointSet& points, std::size_t queries) {
   const std::size_t n = points.size();
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::sort(order.begin(), order.end(),
             [&](std::size_t a, std::size_t b) { return points.coordinates[a] < points.coordinates[b]; });
-  std::vector<double> distances(n);
+  std::vector<double> distances(queries);
   for (std::size_t r = 0; r < n; ++r) {
+    if (order[r] >= queries) continue;
     const std::size_t before = order[(r + n - 1) % n], after = order[(r + 1) % n];
     distances[order[r]] = std::min(periodic_distance_between(points, order[r], before),
                                    periodic_distance_between(points, order[r], after));
@@ -58,12 +59,13 @@ std::vector<double> periodic_distances_1d(const PointSet& points) {
 }
 
 template <int N>
-std::vector<double> periodic_distances_kd_tree(const PointSet& points, int threads, const FractionProgress& progress) {
+std::vector<double> periodic_distances_kd_tree(const PointSet& points, std::size_t queries, int threads,
+                                               const FractionProgress& progress) {
   const LeafOrderedTree<N> ordered(points);
   const PointSet& rows = ordered.sorted();
   const auto& tree = ordered.tree();
   const double lo = points.domain.lo, side = points.domain.side;
-  return neighbour_loop::for_every_point(ordered.original(), threads, progress, [&](std::size_t self) {
+  return neighbour_loop::for_every_point(ordered.original(), queries, threads, progress, [&](std::size_t self) {
     double best = std::numeric_limits<double>::infinity();
     // The nearest point other than i to a query position (the point or one of its images); its
     // minimum-image distance decides, so that every image agrees with the brute force to the bit.
@@ -90,22 +92,30 @@ std::vector<double> periodic_distances_kd_tree(const PointSet& points, int threa
 
 std::vector<double> periodic_nearest_neighbour_distances(const PointSet& points, int threads,
                                                          const FractionProgress& progress) {
+  return periodic_nearest_neighbour_distances_of_first(points, points.size(), threads, progress);
+}
+
+std::vector<double> periodic_nearest_neighbour_distances_of_first(const PointSet& points, std::size_t queries, int threads,
+                                                                  const FractionProgress& progress) {
   if (points.size() < 2) throw std::invalid_argument("nearest-neighbour statistics need at least 2 points");
+  if (queries > points.size()) throw std::invalid_argument("more query points than points");
   check_in_periodic_box(points);
   // Squared differences of huge or tiny coordinates overflow or underflow: compute at unit scale, exactly
   // (stats/distance_scale.hpp), box and all.
   double scale = domain_scale(points.domain.side);
   if (scale == 1.0) scale = coordinate_scale(points);
   if (scale != 1.0) {
-    std::vector<double> distances = periodic_nearest_neighbour_distances(scaled_point_set(points, scale), threads, progress);
+    std::vector<double> distances =
+        periodic_nearest_neighbour_distances_of_first(scaled_point_set(points, scale), queries, threads, progress);
     for (double& d : distances) d *= scale;
     return distances;
   }
-  std::vector<double> distances =
-      points.dimension == 1
-          ? periodic_distances_1d(points)
-          : dispatch_dimension(points.dimension,
-                               [&]<int N>() { return periodic_distances_kd_tree<N>(points, threads, progress); });
+  std::vector<double> distances;
+  if (queries > 0)
+    distances = points.dimension == 1 ? periodic_distances_1d(points, queries)
+                                      : dispatch_dimension(points.dimension, [&]<int N>() {
+                                          return periodic_distances_kd_tree<N>(points, queries, threads, progress);
+                                        });
   if (progress) progress(1.0);
   return distances;
 }

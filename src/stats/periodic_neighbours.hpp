@@ -24,6 +24,13 @@ double periodic_distance_between(const PointSet& points, std::size_t i, std::siz
 std::vector<double> periodic_nearest_neighbour_distances(const PointSet& points, int threads,
                                                          const FractionProgress& progress = {});
 
+// The same distances for the first `queries` points only, each to its nearest other point among ALL the
+// points (the tree is built over every point, only the first `queries` are queried): bit for bit
+// periodic_nearest_neighbour_distances(points, ...)'s values for those points. Needs at least 2 points and
+// queries <= size() (queries = 0 gives no distances). Independent of thread count.
+std::vector<double> periodic_nearest_neighbour_distances_of_first(const PointSet& points, std::size_t queries,
+                                                                  int threads, const FractionProgress& progress = {});
+
 // Brute force, O(n^2): the reference the KD-tree version is tested against.
 std::vector<double> periodic_nearest_neighbour_distances_brute_force(const PointSet& points);
 

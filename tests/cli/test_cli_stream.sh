@@ -167,6 +167,18 @@ expect_error "periodic rdf-max" "" "--rdf-max 0.5 with --periodic must be below 
 expect_error "sets" "" "drop --sets 2" sample --dim 3 --grid 6 --methods cnj --sets 2 --stream -o "$work/bad.csv"
 expect_error "slabs without stream" "" "--slabs applies to --stream" sample --dim 3 --grid 6 --methods cnj --slabs 2 -o "$work/bad.csv"
 expect_error "more slabs than points" "" "more slabs than points" sample --dim 2 --methods sobol -n 4 --stream --slabs 8 -o "$work/bad.csv"
+# A slab that does not fit says what helps (3D 20^3 jitter: 96 bytes a point, 400 points a layer, a halo
+# of two layers): more slabs when a larger divisor of K fits, a smaller --rdf-max when the RDF's
+# halo is what does not fit, else only more memory.
+expect_error "more slabs help" "" "raise --slabs or --max-memory GIB$" \
+  sample --dim 3 --grid 20 --methods jitter --stream --slabs 2 --max-memory 0.0002 -o "$work/bad.csv"
+expect_error "the RDF halo does not fit" "" "; lower --rdf-max or raise --max-memory GIB$" \
+  sample --dim 3 --grid 20 --methods jitter --stream --slabs 2 --max-memory 0.0002 --rdf "$work/rdf.csv" --rdf-max 0.4 \
+  -o "$work/bad.csv"
+expect_error "no slabs help" "" "; raise --max-memory GIB \\(a slab is one layer of the lattice already\\)$" \
+  sample --dim 3 --grid 20 --methods jitter --stream --slabs 20 --max-memory 0.00005 -o "$work/bad.csv"
+expect_error "automatic slabs" "" "; raise --max-memory GIB \\(a slab is one layer" \
+  sample --dim 3 --grid 20 --methods jitter --stream --max-memory 0.00005 -o "$work/bad.csv"
 [[ ! -e $work/bad.csv && ! -e $work/rdf.csv ]] && ok || bad "a refused run left a file"
 mkdir -p "$work/ro" && chmod a-w "$work/ro"
 if [[ -w $work/ro ]]; then ok; else  # root writes anywhere: nothing to check

@@ -131,8 +131,8 @@ TEST(NearestNeighbour, SearchBuildsAgree) {
       const nearest_other::Index<N> index(p, tree);
       std::vector<std::uint32_t> best(p.size()), baseline(p.size());
       auto scratch = nearest_other::make_scratch(index);
-      nearest_other::nearest_rows_kernel<N>(Simd::best)(index, 0, index.leaves().size(), best.data(), scratch);
-      nearest_other::nearest_rows_kernel<N>(Simd::baseline)(index, 0, index.leaves().size(), baseline.data(), scratch);
+      nearest_other::nearest_rows_kernel<N>(Simd::best)(index, 0, index.leaves().size(), static_cast<std::uint32_t>(p.size()), best.data(), scratch);
+      nearest_other::nearest_rows_kernel<N>(Simd::baseline)(index, 0, index.leaves().size(), static_cast<std::uint32_t>(p.size()), baseline.data(), scratch);
       EXPECT_NE(nearest_other::nearest_rows_kernel<N>(Simd::best), nearest_other::nearest_rows_kernel<N>(Simd::baseline));
       for (std::size_t r = 0; r < p.size(); ++r) {
         ASSERT_NE(best[r], r);
@@ -142,6 +142,67 @@ TEST(NearestNeighbour, SearchBuildsAgree) {
       }
     });
   }
+}
+
+// A set of random points and a lattice with exact ties (every neighbour at one spacing, several per point),
+// both with a few duplicates, shuffled so that the first q are no region of their own.
+PointSet of_first_set(int dimension, bool lattice, std::uint64_t seed) {
+  PointSet p{dimension, {}, Box{0.0, 1.0}};
+  if (lattice) {
+    const int side = dimension >= 7 ? 3 : dimension == 6 ? 4 : dimension == 5 ? 5 : dimension == 4 ? 7 : dimension == 3 ? 12 : 40;
+    const LatticeSpec l{dimension, side, Protocol::unit};
+    p.coordinates.resize(l.point_count() * static_cast<std::size_t>(dimension));
+    for (std::uint64_t i = 0; i < l.point_count(); ++i) l.point(i, p.coordinates.data() + static_cast<std::size_t>(dimension) * i);
+  } else {
+    p = uniform_random_points(dimension, 1500, Box{0.0, 1.0}, seed, 1);
+  }
+  for (int k = 0; k < 3; ++k) p.coordinates.insert(p.coordinates.end(), p.point(k * 11), p.point(k * 11) + dimension);
+  // A fixed shuffle (Fisher-Yates on a hash), rows swapped whole.
+  const std::size_t n = p.size();
+  for (std::size_t i = n - 1; i > 0; --i) {
+    const std::size_t j = (i * 2654435761u + seed * 40503u) % (i + 1);
+    std::swap_ranges(p.coordinates.data() + i * static_cast<std::size_t>(dimension), p.coordinates.data() + (i + 1) * static_cast<std::size_t>(dimension),
+                     p.coordinates.data() + j * static_cast<std::size_t>(dimension));
+  }
+  return p;
+}
+
+// nearest_neighbour_distances_of_first(points, q): the first q values of the full function, to the bit, and
+// brute force's; for q = 0, 1, a middle count and n, both backends, 1 and 2 threads, 2D-8D, random and
+// lattice sets with ties and duplicates.
+TEST(NearestNeighbour, OfFirstEqualsTheFullFunctionAndBruteForce) {
+  for (int dimension = 2; dimension <= 8; ++dimension)
+    for (bool lattice : {false, true}) {
+      const PointSet p = of_first_set(dimension, lattice, 60 + static_cast<std::uint64_t>(dimension));
+      const auto brute = nearest_neighbour_distances_brute_force(p);
+      for (KnnBackend backend : {KnnBackend::nanoflann, KnnBackend::flann}) {
+        const auto full = nearest_neighbour_distances(p, backend, 2);
+        ASSERT_EQ(full, brute);
+        for (std::size_t q : {std::size_t{0}, std::size_t{1}, p.size() / 3, p.size() - 1, p.size()})
+          for (int threads : {1, 2}) {
+            if (threads == 1 && q != p.size() / 3) continue;  // one thread once: the answer is the same
+            const auto first = nearest_neighbour_distances_of_first(p, q, backend, threads);
+            ASSERT_EQ(first.size(), q);
+            for (std::size_t i = 0; i < q; ++i)
+              ASSERT_EQ(first[i], full[i]) << dimension << "D " << (lattice ? "lattice" : "random") << " "
+                                           << to_string(backend) << " q = " << q << " point " << i;
+          }
+      }
+    }
+}
+
+// The tree is over every point: a point's neighbour among the unqueried rows counts. Two points of a pair
+// far from the rest, one queried and one not.
+TEST(NearestNeighbour, OfFirstSearchesThePointsAfterTheFirst) {
+  PointSet p{3, {0.5, 0.5, 0.5, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 0.5, 0.5, 0.25}, Box{0.0, 1.0}};
+  for (KnnBackend backend : {KnnBackend::nanoflann, KnnBackend::flann}) {
+    const auto d = nearest_neighbour_distances_of_first(p, 1, backend, 1);
+    ASSERT_EQ(d.size(), 1u);
+    EXPECT_EQ(d[0], 0.25);
+  }
+  EXPECT_THROW(nearest_neighbour_distances_of_first(p, 5, KnnBackend::nanoflann, 1), std::invalid_argument);
+  EXPECT_THROW(nearest_neighbour_distances_of_first(PointSet{3, {0.5, 0.5, 0.5}, Box{0.0, 1.0}}, 1, KnnBackend::nanoflann, 1),
+               std::invalid_argument);
 }
 
 }  // namespace

@@ -3,9 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "dfvn/sampling/jitter.hpp"
+#include "dfvn/sampling/lattice.hpp"
 #include "dfvn/stats/nearest_neighbour.hpp"
 #include "dfvn/stats/radial_distribution.hpp"
 
@@ -57,6 +60,54 @@ TEST(PeriodicNeighbours, IndependentOfThreadsAndRefusesPointsOutsideTheBox) {
   EXPECT_THROW(periodic_nearest_neighbour_distances(outside, 1), std::invalid_argument);
   PointSet one{2, {0.5, 0.5}, Box{0.0, 1.0}};
   EXPECT_THROW(periodic_nearest_neighbour_distances(one, 1), std::invalid_argument);
+}
+
+// periodic_nearest_neighbour_distances_of_first(points, q): the first q values of the full function and of
+// brute force, to the bit, for q = 0, 1, a middle count and n, on 1 and 2 threads, 1D-8D, random sets and
+// lattices (exact ties, across the faces too) with duplicates, shuffled, in a box that does not start at 0.
+TEST(PeriodicNeighbours, OfFirstEqualsTheFullFunctionAndBruteForce) {
+  for (int dimension = 1; dimension <= 8; ++dimension)
+    for (bool lattice : {false, true}) {
+      const Box box{-2.0, 3.0};
+      PointSet p{dimension, {}, box};
+      if (lattice) {
+        const int side = dimension >= 7 ? 3 : dimension == 6 ? 4 : dimension == 5 ? 5 : dimension == 4 ? 7 : dimension == 3 ? 12 : dimension == 2 ? 40 : 300;
+        const LatticeSpec l{dimension, side, Protocol::unit};
+        p.coordinates.resize(l.point_count() * static_cast<std::size_t>(dimension));
+        for (std::uint64_t i = 0; i < l.point_count(); ++i) l.point(i, p.coordinates.data() + static_cast<std::size_t>(dimension) * i);
+        for (double& x : p.coordinates) x = box.lo + box.side * x;  // 3 * (k + 0.5) / side: exact ties on most axes
+      } else {
+        p = uniform_random_points(dimension, dimension == 1 ? 300 : 1500, box, 70 + static_cast<std::uint64_t>(dimension), 1);
+      }
+      for (int k = 0; k < 3; ++k) p.coordinates.insert(p.coordinates.end(), p.point(k * 7), p.point(k * 7) + dimension);
+      const std::size_t n = p.size();
+      for (std::size_t i = n - 1; i > 0; --i) {
+        const std::size_t j = (i * 2654435761u + static_cast<std::size_t>(dimension) * 40503u) % (i + 1);
+        std::swap_ranges(p.coordinates.data() + i * static_cast<std::size_t>(dimension), p.coordinates.data() + (i + 1) * static_cast<std::size_t>(dimension),
+                     p.coordinates.data() + j * static_cast<std::size_t>(dimension));
+      }
+      const auto brute = periodic_nearest_neighbour_distances_brute_force(p);
+      const auto full = periodic_nearest_neighbour_distances(p, 2);
+      ASSERT_EQ(full, brute) << dimension << "D";
+      for (std::size_t q : {std::size_t{0}, std::size_t{1}, n / 3, n - 1, n})
+        for (int threads : {1, 2}) {
+          if (threads == 1 && q != n / 3) continue;  // one thread once: the answer is the same
+          const auto first = periodic_nearest_neighbour_distances_of_first(p, q, threads);
+          ASSERT_EQ(first.size(), q);
+          for (std::size_t i = 0; i < q; ++i)
+            ASSERT_EQ(first[i], full[i]) << dimension << "D " << (lattice ? "lattice" : "random") << " q = " << q << " point " << i;
+        }
+    }
+}
+
+// The unqueried points count as neighbours, across the faces too; bad counts are refused.
+TEST(PeriodicNeighbours, OfFirstSearchesThePointsAfterTheFirst) {
+  PointSet p{2, {0.01, 0.5, 0.5, 0.1, 0.98, 0.5}, Box{0.0, 1.0}};
+  const auto d = periodic_nearest_neighbour_distances_of_first(p, 1, 1);
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_NEAR(d[0], 0.03, 1e-12);
+  EXPECT_THROW(periodic_nearest_neighbour_distances_of_first(p, 4, 1), std::invalid_argument);
+  EXPECT_THROW(periodic_nearest_neighbour_distances_of_first(PointSet{2, {0.5, 0.5}, Box{0.0, 1.0}}, 0, 1), std::invalid_argument);
 }
 
 // On the torus uniform random points give g(r) = 1 without any edge correction; each bin is compared
