@@ -1,5 +1,6 @@
 // dfvn-sample-mpi: `dfvn-sample sample --stream` over MPI ranks (src/mpi/mpi_sampling.hpp). Parsing and
-// glue only: the options of the streamable subset of sample, with sample's names and defaults.
+// glue only: the options of the streamable subset of sample, with sample's names and defaults; rank 0
+// writes the CSVs and the JSON and shows the progress.
 #include <mpi.h>
 
 #include <CLI/CLI.hpp>
@@ -14,6 +15,7 @@
 
 #include "dfvn/core/seeds.hpp"
 #include "dfvn/experiment/experiment.hpp"
+#include "dfvn/experiment/json_report.hpp"
 #include "dfvn/io/atomic_file.hpp"
 #include "dfvn/io/point_file.hpp"
 #include "dfvn/mpi/mpi_sampling.hpp"
@@ -27,6 +29,7 @@ constexpr const char* kMpiProgram = "dfvn-sample-mpi";
 
 struct Options {
   dfvn_cli::CommonOptions common;
+  dfvn_cli::ProgressOptions progress;
   dfvn::SampleConfig config;
   std::string methods = "cnj,jitter,random,sobol";
   std::string protocol;
@@ -36,6 +39,8 @@ struct Options {
   std::string reproject = "gauss-newton";
   std::string scramble = "owen";
   std::string stats_path = "-";
+  std::string rdf_path;
+  std::string json_path;
   std::string points_dir;
   std::string format = "npy";
   std::string domain{dfvn::to_string(dfvn::kDefaultCnjDomain)};
@@ -77,6 +82,23 @@ void add_options(CLI::App& app, Options& o) {
                         ->capture_default_str()
                         ->check(CLI::IsMember({"csv", "npy", "dat", "bin"}));
   app.add_flag("--no-stats", o.no_stats, "Generate the point sets only (needs --points): no statistics and no stats CSV");
+  app.add_flag("--periodic", config.periodic_statistics,
+               "Measure every set on the torus of its box: minimum-image nearest-neighbour distances and RDF, the\n"
+               "halos wrapping from the last rank to the first (off: Euclidean distances in the box), as in sample");
+  app.add_option("--rdf", o.rdf_path,
+                 "Also compute radial distribution functions and write them to this CSV (dim,method,r,g), by rank 0:\n"
+                 "the same bytes as 'dfvn-sample sample --stream --rdf'");
+  app.add_option("--rdf-max", config.rdf.r_max, "Largest r of the RDF; 0 = 2.5 mean spacings")
+      ->capture_default_str()
+      ->check(dfvn_cli::kNonNegativeFinite);
+  app.add_option("--rdf-bins", config.rdf.bins, "Number of RDF bins")->capture_default_str()->check(CLI::Range(1, 100000));
+  app.add_option("--rdf-queries", config.rdf.max_queries, "RDF query points: a seeded subset of about this many (0 = all points)")
+      ->capture_default_str()
+      ->check(dfvn_cli::kUnsignedInteger);
+  app.add_option("--json", o.json_path,
+                 "Also write the run as JSON, by rank 0 ('-' = standard output): the same bytes as 'dfvn-sample sample\n"
+                 "--stream --json' (its \"program\" is \"dfvn-sample\", the experiment's, so that the files compare\n"
+                 "equal)");
   app.add_flag("--no-timing", o.no_timing,
                "Leave the seconds columns (seconds_generate, seconds_stats) empty: runs give identical files");
   app.add_option("--knn", o.knn, "KD-tree backend: nanoflann or flann (identical distances)")
@@ -126,6 +148,8 @@ void add_options(CLI::App& app, Options& o) {
                  "on it, nor on the ranks or threads")
       ->capture_default_str()
       ->check(CLI::Range(0, 1 << 30));
+  o.progress.add_to(app);
+  o.progress.program = kMpiProgram;
   dfvn_cli::add_common_options(app, o.common);
 }
 
@@ -151,11 +175,13 @@ void configure(Options& o) {
     config.grid = dfvn::grid_for_count(config.dimension, o.count);
   }
   config.compute_statistics = !o.no_stats;
+  config.compute_rdf = !o.rdf_path.empty();
   config.stream = true;
   if (o.format_option->count() > 0 && o.points_dir.empty())
     throw std::invalid_argument("--format " + o.format + " applies to --points, which is not given");
   if (o.no_stats && o.points_dir.empty()) throw std::invalid_argument("--no-stats writes only point sets: give --points DIR");
-  if (o.no_stats && o.stats_option->count() > 0) throw std::invalid_argument("--no-stats computes no statistics: drop --output");
+  if (o.no_stats && (o.stats_option->count() > 0 || !o.rdf_path.empty()))
+    throw std::invalid_argument("--no-stats computes no statistics: drop --output and --rdf");
   if (o.points_dir == "-")
     throw std::invalid_argument("--points -: every rank writes its part of one file (MPI-IO), which needs a directory");
 }
@@ -180,6 +206,8 @@ int run(Options& o, int rank, MPI_Comm comm) {
     try {
       std::vector<std::pair<std::string, std::string>> outputs;
       if (!o.no_stats) outputs.emplace_back("--output", o.stats_path);
+      if (!o.rdf_path.empty()) outputs.emplace_back("--rdf", o.rdf_path);
+      if (!o.json_path.empty()) outputs.emplace_back("--json", o.json_path);
       if (!o.points_dir.empty())
         for (dfvn::Method m : o.config.methods) outputs.emplace_back("--points", point_file(o, m));
       dfvn::check_outputs(outputs, o.points_dir.empty() ? std::vector<std::string>{} : std::vector<std::string>{o.points_dir});
@@ -197,12 +225,25 @@ int run(Options& o, int rank, MPI_Comm comm) {
   if (!o.points_dir.empty()) path = [&o](dfvn::Method m) { return point_file(o, m); };
   int fail_rank = -1;
   if (const char* f = std::getenv("DFVN_MPI_FAIL_RANK")) fail_rank = std::atoi(f);
-  const auto results =
-      dfvn::run_mpi_sampling(comm, o.config, o.config.stream_slabs, path, dfvn::parse_point_format(o.format), fail_rank);
-  if (rank == 0 && !o.no_stats) {
+  // Progress from rank 0 (its share of the work), with sample --stream's stages.
+  dfvn::ProgressReporter* reporter = nullptr;
+  if (rank == 0) reporter = o.progress.make(dfvn::sampling_stage_weights(o.config));
+  const auto results = dfvn::run_mpi_sampling(comm, o.config, o.config.stream_slabs, path,
+                                              dfvn::parse_point_format(o.format),
+                                              reporter ? reporter->callback() : dfvn::StageProgress{}, fail_rank);
+  if (rank == 0) {
+    reporter->complete();
+    // sample --stream's files, in its order.
     std::string stats = dfvn::stats_csv_header();
-    for (const auto& r : results) stats += dfvn::stats_csv_row(o.config, r, !o.no_timing);
-    dfvn::write_file_atomically(o.stats_path, stats);
+    std::string rdf = dfvn::rdf_csv_header();
+    for (const auto& r : results) {
+      stats += dfvn::stats_csv_row(o.config, r, !o.no_timing);
+      rdf += dfvn::rdf_csv_rows(o.config, r);
+    }
+    if (!o.json_path.empty())
+      dfvn::write_file_atomically(o.json_path, dfvn::sampling_json(o.config, {{o.config.seed, results}}, !o.no_timing));
+    if (!o.rdf_path.empty()) dfvn::write_file_atomically(o.rdf_path, rdf);
+    if (!o.no_stats) dfvn::write_file_atomically(o.stats_path, stats);
   }
   return 0;
 }
@@ -216,8 +257,9 @@ int main(int argc, char** argv) {
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   CLI::App app{"dfvn-sample-mpi: 'dfvn-sample sample --stream' over MPI ranks (mpirun -np P dfvn-sample-mpi ...):\n"
                "cnj, jitter, random and sobol in slabs of the lattice's last axis, contiguous slabs per rank, one\n"
-               "point file written by all ranks (MPI-IO), and the one-process run's point files and statistics CSV\n"
-               "byte for byte, whatever the number of ranks or threads.",
+               "point file written by all ranks (MPI-IO), and the one-process run's point files, statistics CSV,\n"
+               "--rdf CSV and --json byte for byte (in the box and, with --periodic, on the torus), whatever the\n"
+               "number of ranks or threads.",
                kMpiProgram};
   app.set_version_flag("--version", std::string(kMpiProgram) + " " + DFVN_VERSION);
   Options options;

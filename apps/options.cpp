@@ -294,7 +294,7 @@ void ProgressOptions::add_to(CLI::App& app) {
 
 dfvn::ProgressReporter* ProgressOptions::make(int stages) {
   reporter_.emplace(quiet ? dfvn::ProgressMode::never : dfvn::parse_progress_mode(mode), stderr,
-                    ::isatty(STDERR_FILENO) == 1, kProgram);
+                    ::isatty(STDERR_FILENO) == 1, program);
   reporter_->set_stage_count(stages);
   return &*reporter_;
 }

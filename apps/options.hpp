@@ -94,6 +94,7 @@ void add_common_options(CLI::App& app, CommonOptions& common);
 struct ProgressOptions {
   std::string mode = "auto";
   bool quiet = false;
+  const char* program = kProgram;  // the lines' prefix (dfvn-sample-mpi names itself)
 
   void add_to(CLI::App& app);
   // A reporter on stderr; `stages`: how many stages the run reports (0: unknown).

@@ -97,6 +97,53 @@ std::function<double(std::uint64_t)> distributed_order_statistics(MPI_Comm comm,
   return sorted_at_ranks(std::move(ranks), std::move(values));
 }
 
+namespace {
+
+// Set by add_fixed_point when a sum carries out of its top limb (never, by the sums' range).
+int fixed_point_overflow = 0;
+
+// inout += in for `len` fixed-point integers of `type` (contiguous 64-bit limbs, least significant first).
+void add_fixed_point(void* in, void* inout, int* len, MPI_Datatype* type) {
+  int bytes = 0;
+  MPI_Type_size(*type, &bytes);
+  const int limbs = bytes / static_cast<int>(sizeof(std::uint64_t));
+  const auto* a = static_cast<const std::uint64_t*>(in);
+  auto* s = static_cast<std::uint64_t*>(inout);
+  for (int e = 0; e < *len; ++e, a += limbs, s += limbs) {
+    std::uint64_t carry = 0;
+    for (int k = 0; k < limbs; ++k) {
+      const std::uint64_t t = s[k] + a[k];
+      const std::uint64_t c1 = t < s[k];
+      s[k] = t + carry;
+      carry = c1 | (s[k] < t);
+    }
+    if (carry) fixed_point_overflow = 1;
+  }
+}
+
+}  // namespace
+
+void reduce_rdf_pair_sums(MPI_Comm comm, RdfPairSums& sums) {
+  const std::vector<std::uint64_t>& mine = sums.words();
+  std::vector<std::uint64_t> total(mine.size(), 0);
+  if (!mine.empty()) {
+    MPI_Datatype number;
+    MPI_Type_contiguous(sums.limbs(), MPI_UINT64_T, &number);
+    MPI_Type_commit(&number);
+    MPI_Op add;
+    MPI_Op_create(&add_fixed_point, 1, &add);
+    fixed_point_overflow = 0;
+    MPI_Allreduce(mine.data(), total.data(), sums.bins(), number, add, comm);
+    MPI_Op_free(&add);
+    MPI_Type_free(&number);
+  }
+  int overflow = fixed_point_overflow, any = 0;
+  MPI_Allreduce(&overflow, &any, 1, MPI_INT, MPI_MAX, comm);
+  if (any) throw std::logic_error("an RDF pair sum overflowed");
+  sums = sums.empty_copy();
+  sums.merge_words(total);
+}
+
 double distributed_median(MPI_Comm comm, const std::vector<double>& sorted, std::uint64_t n) {
   if (n == 0) return 0.0;
   const auto at = distributed_order_statistics(comm, sorted, n);

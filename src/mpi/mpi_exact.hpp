@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "dfvn/stats/radial_distribution.hpp"
+
 namespace dfvn {
 
 // Each rank's failure (an exception) made known to every rank: when any rank failed, the lowest failed
@@ -32,5 +34,11 @@ std::vector<double> select_ranks(MPI_Comm comm, const std::vector<double>& sorte
 std::function<double(std::uint64_t)> distributed_order_statistics(MPI_Comm comm, const std::vector<double>& sorted,
                                                                   std::uint64_t n);
 double distributed_median(MPI_Comm comm, const std::vector<double>& sorted, std::uint64_t n);
+
+// Every rank's RDF pair sums (the same bins and range everywhere) added exactly: the fixed-point integers
+// (RdfPairSums::words) summed limb by limb with carries in an MPI_Allreduce of a user operation, so any
+// reduction order gives the same integers; every rank ends with the total. A logic_error on every rank if
+// a sum overflowed (the sums leave room for 2^64 weights).
+void reduce_rdf_pair_sums(MPI_Comm comm, RdfPairSums& sums);
 
 }  // namespace dfvn

@@ -17,6 +17,7 @@
 #include "dfvn/core/stopwatch.hpp"
 #include "dfvn/experiment/streamed_sampling.hpp"
 #include "dfvn/mpi/mpi_exact.hpp"
+#include "dfvn/mpi/mpi_neighbours.hpp"
 #include "dfvn/mpi/mpi_point_file.hpp"
 #include "dfvn/sampling/jitter.hpp"
 #include "dfvn/stats/distance_scale.hpp"
@@ -26,24 +27,6 @@ namespace dfvn {
 namespace {
 
 bool is_lattice(Method m) { return m == Method::cnj || m == Method::jitter; }
-
-struct Ranks {
-  MPI_Comm comm;
-  int rank = 0, size = 1;
-  explicit Ranks(MPI_Comm c) : comm(c) {
-    MPI_Comm_rank(comm, &rank);
-    MPI_Comm_size(comm, &size);
-  }
-  // Rank r's slabs: [first_slab(r), first_slab(r + 1)).
-  int first_slab(int r, int slabs) const {
-    return static_cast<int>(static_cast<long long>(r) * slabs / size);
-  }
-  int rank_of_slab(int s, int slabs) const {
-    int r = 0;
-    while (r + 1 < size && first_slab(r + 1, slabs) <= s) ++r;
-    return r;
-  }
-};
 
 std::uint64_t layer_size(const SampleConfig& config) {
   std::uint64_t layer = 1;
@@ -137,231 +120,54 @@ class DisplacementState {
   double spacing_;
 };
 
-// Records of (index bits, x_0 .. x_{N-1}) exchanged between ranks.
-std::vector<double> all_to_all(MPI_Comm comm, const std::vector<std::vector<double>>& out) {
-  const int size = static_cast<int>(out.size());
-  std::vector<int> send_counts(size), receive_counts(size), send_at(size), receive_at(size);
-  std::vector<double> send;
-  for (int r = 0; r < size; ++r) {
-    if (out[r].size() > static_cast<std::size_t>(std::numeric_limits<int>::max()) - send.size())
-      throw std::runtime_error("dfvn-sample-mpi: more than 2^31 values between two ranks: run on more ranks");
-    send_at[r] = static_cast<int>(send.size());
-    send_counts[r] = static_cast<int>(out[r].size());
-    send.insert(send.end(), out[r].begin(), out[r].end());
-  }
-  MPI_Alltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, comm);
-  long long total = 0;
-  for (int r = 0; r < size; ++r) {
-    receive_at[r] = static_cast<int>(total);
-    total += receive_counts[r];
-  }
-  std::vector<double> in(static_cast<std::size_t>(total));
-  MPI_Alltoallv(send.data(), send_counts.data(), send_at.data(), MPI_DOUBLE, in.data(), receive_counts.data(),
-                receive_at.data(), MPI_DOUBLE, comm);
-  return in;
-}
-
-std::vector<double> sendrecv(MPI_Comm comm, const std::vector<double>& out, int to, int from) {
-  long long count = static_cast<long long>(out.size()), incoming = 0;
-  MPI_Sendrecv(&count, 1, MPI_LONG_LONG, to, 81, &incoming, 1, MPI_LONG_LONG, from, 81, comm, MPI_STATUS_IGNORE);
-  std::vector<double> in(static_cast<std::size_t>(incoming));
-  MPI_Sendrecv(out.data(), static_cast<int>(count), MPI_DOUBLE, to, 82, in.data(), static_cast<int>(incoming), MPI_DOUBLE,
-               from, 82, comm, MPI_STATUS_IGNORE);
-  return in;
-}
-
-double tag_of(std::uint64_t index) {
-  double tag;
-  std::memcpy(&tag, &index, sizeof tag);
-  return tag;
-}
-std::uint64_t index_of(double tag) {
-  std::uint64_t index;
-  std::memcpy(&index, &tag, sizeof index);
-  return index;
-}
-
-// Every point's nearest-neighbour distance, returned to the rank that made the point, by index:
-// (index, distance) pairs sorted by index. `first_rows[r]`: the first output row of rank r (P + 1 entries).
-std::vector<std::pair<std::uint64_t, double>> nearest_distances(const Ranks& ranks, const SampleConfig& config,
-                                                                const PointSet& mine, std::uint64_t my_first,
-                                                                const std::vector<std::uint64_t>& first_rows,
-                                                                int slabs, const Box& domain, std::uint64_t total) {
-  const int n = config.dimension;
-  const std::size_t record = static_cast<std::size_t>(n) + 1;
-  const auto edge = [&](int s) { return domain.lo + domain.side * static_cast<double>(s) / static_cast<double>(slabs); };
-  const auto bucket_of = [&](double z) {
-    const double f = (z - domain.lo) / domain.side * static_cast<double>(slabs);
-    if (!(f >= 0.0)) return 0;
-    return static_cast<int>(std::min(std::floor(f), static_cast<double>(slabs - 1)));
-  };
-  // The points to the ranks owning their last coordinate's slab.
-  std::vector<std::vector<double>> out(static_cast<std::size_t>(ranks.size));
-  double zmin = std::numeric_limits<double>::infinity(), zmax = -zmin;
-  for (std::size_t i = 0; i < mine.size(); ++i) {
-    const double* x = mine.point(i);
-    zmin = std::min(zmin, x[n - 1]);
-    zmax = std::max(zmax, x[n - 1]);
-    std::vector<double>& o = out[static_cast<std::size_t>(ranks.rank_of_slab(bucket_of(x[n - 1]), slabs))];
-    o.push_back(tag_of(my_first + i));
-    o.insert(o.end(), x, x + n);
-  }
-  double extremes[2] = {zmin, -zmax}, global[2];
-  MPI_Allreduce(extremes, global, 2, MPI_DOUBLE, MPI_MIN, ranks.comm);
-  zmin = global[0];
-  zmax = -global[1];
-  const std::vector<double> owned = all_to_all(ranks.comm, out);
-  const std::uint64_t queries = owned.size() / record;
-  const int s0 = ranks.first_slab(ranks.rank, slabs), s1 = ranks.first_slab(ranks.rank + 1, slabs);
-  const double range_lo = edge(s0), range_hi = edge(s1);
-  // d: each owned point's distance; pending: the points whose distance is not yet known to be exact.
-  std::vector<double> d(queries, std::numeric_limits<double>::quiet_NaN());
-  std::vector<std::uint64_t> pending(queries);
-  for (std::uint64_t q = 0; q < queries; ++q) pending[q] = q;
-  double h = domain.side / std::pow(static_cast<double>(total), 1.0 / n);
-  for (int attempt = 0;; ++attempt) {
-    // The halo: from ranks r -+ k the points within h of this rank's range, k = 1, 2, ... while any rank
-    // still sends a point (the sets shrink with k: the ranges move away).
-    std::vector<double> halo;
-    for (int k = 1; k < ranks.size; ++k) {
-      const int up = ranks.rank + k < ranks.size ? ranks.rank + k : MPI_PROC_NULL;
-      const int down = ranks.rank - k >= 0 ? ranks.rank - k : MPI_PROC_NULL;
-      std::vector<double> to_up, to_down;
-      const double up_lo = up != MPI_PROC_NULL ? edge(ranks.first_slab(up, slabs)) - h : 0.0;
-      const double down_hi = down != MPI_PROC_NULL ? edge(ranks.first_slab(down + 1, slabs)) + h : 0.0;
-      for (std::uint64_t q = 0; q < queries; ++q) {
-        const double* r = owned.data() + q * record;
-        const double z = r[n];
-        if (up != MPI_PROC_NULL && z >= up_lo) to_up.insert(to_up.end(), r, r + record);
-        if (down != MPI_PROC_NULL && z < down_hi) to_down.insert(to_down.end(), r, r + record);
-      }
-      int sent = !to_up.empty() || !to_down.empty(), any = 0;
-      std::vector<double> from_down = sendrecv(ranks.comm, to_up, up, down);
-      std::vector<double> from_up = sendrecv(ranks.comm, to_down, down, up);
-      halo.insert(halo.end(), from_down.begin(), from_down.end());
-      halo.insert(halo.end(), from_up.begin(), from_up.end());
-      MPI_Allreduce(&sent, &any, 1, MPI_INT, MPI_MAX, ranks.comm);
-      if (!any) break;
-    }
-    const double lo = range_lo - h, hi = range_hi + h;
-    const bool all_below = lo <= zmin, all_above = hi > zmax;
-    double needed = h;
-    std::vector<std::uint64_t> still;
-    if (!pending.empty()) {
-      // The set: the pending points first, then every other loaded point (first attempt) or those within
-      // the windows [z - d, z + d] of the pending points' last distances d (later attempts: a pending
-      // point's nearest neighbour is no farther than the point found before, which is still loaded, so
-      // it lies in its window; only the few points near the range's edges are measured again).
-      std::vector<std::pair<double, double>> windows;
-      if (attempt > 0) {
-        for (std::uint64_t q : pending) {
-          const double z = owned[q * record + n], reach = d[q] * (1.0 + 1e-6) + 1e-9 * domain.side;
-          windows.emplace_back(std::isfinite(reach) ? z - reach : -std::numeric_limits<double>::infinity(),
-                               std::isfinite(reach) ? z + reach : std::numeric_limits<double>::infinity());
-        }
-        std::sort(windows.begin(), windows.end());
-        std::vector<std::pair<double, double>> merged;
-        for (const auto& w : windows)
-          if (!merged.empty() && w.first <= merged.back().second) merged.back().second = std::max(merged.back().second, w.second);
-          else merged.push_back(w);
-        windows = std::move(merged);
-      }
-      const auto in_windows = [&](double z) {
-        if (attempt == 0) return true;
-        auto it = std::upper_bound(windows.begin(), windows.end(), std::make_pair(z, std::numeric_limits<double>::infinity()));
-        return it != windows.begin() && z <= std::prev(it)->second;
-      };
-      PointSet set{n, {}, domain};
-      std::vector<char> is_pending(queries, 0);
-      const auto add = [&](const double* r) { set.coordinates.insert(set.coordinates.end(), r + 1, r + record); };
-      for (std::uint64_t q : pending) {
-        is_pending[q] = 1;
-        add(owned.data() + q * record);
-      }
-      for (std::uint64_t q = 0; q < queries; ++q)
-        if (!is_pending[q] && in_windows(owned[q * record + n])) add(owned.data() + q * record);
-      for (std::size_t k = 0; k < halo.size(); k += record)
-        if (in_windows(halo[k + n])) add(halo.data() + k);
-      if (set.size() < 2) {
-        if (all_below && all_above) throw std::invalid_argument("the statistics need at least 2 points");
-        needed = 2.0 * h;
-        still = pending;
-      } else {
-        // Few pending points (later attempts): each against every point of the set, by distance_between, the
-        // function through which the KD-trees report their distances too (the same bits); else the KD-tree.
-        std::vector<double> found;
-        if (static_cast<double>(pending.size()) * static_cast<double>(set.size()) <= 5e7) {
-          found.assign(pending.size(), std::numeric_limits<double>::infinity());
-          for (std::size_t j = 0; j < pending.size(); ++j)
-            for (std::size_t k = 0; k < set.size(); ++k)
-              if (k != j) found[j] = std::min(found[j], distance_between(set, j, k));
-        } else {
-          found = nearest_neighbour_distances(set, config.knn, config.threads);
-        }
-        // The one-process stream's rule (streamed_sampling.cpp, measure_bucket).
-        constexpr double kSlack = 1e-9;
-        const double width = hi - lo;
-        for (std::size_t j = 0; j < pending.size(); ++j) {
-          const std::uint64_t q = pending[j];
-          d[q] = found[j];
-          const double z = owned[q * record + n];
-          const double margin = std::min(all_below ? std::numeric_limits<double>::infinity() : z - lo,
-                                         all_above ? std::numeric_limits<double>::infinity() : hi - z);
-          if (!(d[q] <= margin - kSlack * width)) {
-            needed = std::max(needed, (h + d[q] - margin) * (1.0 + 1e-6) + 2.0 * kSlack * width);
-            still.push_back(q);
-          }
-        }
-      }
-    }
-    pending = std::move(still);
-    double most = 0.0;
-    MPI_Allreduce(&needed, &most, 1, MPI_DOUBLE, MPI_MAX, ranks.comm);
-    if (most <= h) break;
-    h = attempt < 4 ? most : 2.0 * h;
-  }
-  // Each distance back to the rank that made its point.
-  std::vector<std::vector<double>> back(static_cast<std::size_t>(ranks.size));
-  for (std::uint64_t q = 0; q < queries; ++q) {
-    const std::uint64_t index = index_of(owned[q * record]);
-    const int r = static_cast<int>(std::upper_bound(first_rows.begin(), first_rows.end(), index) - first_rows.begin()) - 1;
-    back[static_cast<std::size_t>(r)].push_back(owned[q * record]);
-    back[static_cast<std::size_t>(r)].push_back(d[q]);
-  }
-  const std::vector<double> in = all_to_all(ranks.comm, back);
-  std::vector<std::pair<std::uint64_t, double>> pairs(in.size() / 2);
-  for (std::size_t k = 0; k < pairs.size(); ++k) pairs[k] = {index_of(in[2 * k]), in[2 * k + 1]};
-  std::sort(pairs.begin(), pairs.end());
-  if (pairs.size() != mine.size()) throw std::logic_error("a point without its nearest-neighbour distance");
-  for (std::size_t k = 0; k < pairs.size(); ++k)
-    if (pairs[k].first != my_first + k) throw std::logic_error("a point without its nearest-neighbour distance");
-  return pairs;
-}
-
 void fail_here(int rank, const char* where) {
   std::fprintf(stderr, "dfvn-sample-mpi: error: rank %d stops %s (DFVN_MPI_FAIL_RANK, a test hook)\n", rank, where);
   std::fflush(stderr);
   ::_exit(3);
 }
 
-MethodResult run_mpi_method(const Ranks& ranks, const SampleConfig& config, const MethodPlan& plan, int slab_count,
-                            const std::function<std::string(Method)>& point_path, PointFormat format, int fail_rank,
-                            bool& failed_once) {
+MethodResult run_mpi_method(const RankSlabs& ranks, const SampleConfig& config, const MethodPlan& plan,
+                            const std::function<std::string(Method)>& point_path, PointFormat format,
+                            const StageProgress& progress, int fail_rank, bool& failed_once) {
   const int n = config.dimension;
   MethodResult result;
   result.plan = plan;
-  const std::uint64_t rows_per_slab = slab_rows(config, plan, slab_count);
+  const std::uint64_t rows_per_slab = slab_rows(config, plan, ranks.slabs);
   const auto first_row = [&](int s) { return std::min(plan.requested, rows_per_slab * static_cast<std::uint64_t>(s)); };
-  const std::uint64_t first = first_row(ranks.first_slab(ranks.rank, slab_count));
-  const std::uint64_t rows = first_row(ranks.first_slab(ranks.rank + 1, slab_count)) - first;
+  const int my_slab = ranks.first_slab(ranks.rank), end_slab = ranks.first_slab(ranks.rank + 1);
+  const std::uint64_t first = first_row(my_slab);
+  const std::uint64_t rows = first_row(end_slab) - first;
   const LatticeSpec lattice = config.lattice();
   const Box domain = plan.method == Method::cnj ? Box{0.0, 1.0} : plan.domain;
   if (config.compute_statistics && domain_scale(domain.side) != 1.0)
     throw std::invalid_argument("--stream measures sets of ordinary side only");
 
+  const std::string name(to_string(plan.method));
+  if (progress) progress(name, 0.0);
   Stopwatch stopwatch;
   Slab part;
-  run_everywhere(ranks.comm, [&] { part = generate_slab(config, plan, first, rows); });
+  // A slab at a time (the same rows as one range: every point depends only on its index), so that rank 0
+  // can report its progress; the rank's rows appended in order.
+  run_everywhere(ranks.comm, [&] {
+    part = generate_slab(config, plan, first, 0);
+    part.points.coordinates.reserve(rows * static_cast<std::uint64_t>(n));
+    if (is_lattice(plan.method)) part.displacements.reserve(rows * static_cast<std::uint64_t>(n));
+    for (int s = my_slab; s < end_slab; ++s) {
+      const std::uint64_t slab_first = first_row(s), slab_count = first_row(s + 1) - slab_first;
+      if (slab_count == 0) continue;
+      Slab slab = generate_slab(config, plan, slab_first, slab_count);
+      part.points.coordinates.insert(part.points.coordinates.end(), slab.points.coordinates.begin(),
+                                     slab.points.coordinates.end());
+      part.displacements.insert(part.displacements.end(), slab.displacements.begin(), slab.displacements.end());
+      part.dropped += slab.dropped;
+      part.skipped += slab.skipped;
+      part.retraced += slab.retraced;
+      part.kept += slab.kept;
+      part.trace_time = slab.trace_time;
+      part.field_frequency = slab.field_frequency;
+      if (progress) progress(name, static_cast<double>(s + 1 - my_slab) / static_cast<double>(end_slab - my_slab));
+    }
+  });
   // Counts: the output rows of the ranks below, the totals.
   unsigned long long counts[5] = {part.points.size(), part.dropped, part.skipped, part.retraced, part.kept}, totals[5];
   MPI_Allreduce(counts, totals, 5, MPI_UNSIGNED_LONG_LONG, MPI_SUM, ranks.comm);
@@ -412,7 +218,6 @@ MethodResult run_mpi_method(const Ranks& ranks, const SampleConfig& config, cons
   }
   part.displacements = {};
   result.seconds_generate = stopwatch.seconds();
-  const std::string name(to_string(plan.method));
   if (config.compute_statistics && accepted < 2)
     throw std::invalid_argument(fmt::format("the {} point set has {} point(s) ({}); the statistics need at least 2", name,
                                             accepted, facts.dropped ? fmt::format("{} dropped", *facts.dropped) : result.notes));
@@ -423,12 +228,19 @@ MethodResult run_mpi_method(const Ranks& ranks, const SampleConfig& config, cons
     file.commit();
   }
   if (!config.compute_statistics) return result;
+  const std::string stage = name + " statistics";
+  if (progress) progress(stage, 0.0);
   stopwatch.restart();
   if (ranks.rank == fail_rank && !failed_once) fail_here(ranks.rank, "before the statistics");
   failed_once = true;
+  std::unique_ptr<OwnedPoints> owned;
   std::vector<std::pair<std::uint64_t, double>> pairs;
   run_everywhere(ranks.comm, [&] {
-    pairs = nearest_distances(ranks, config, part.points, my_first, first_rows, slab_count, domain, accepted);
+    owned = std::make_unique<OwnedPoints>(ranks, part.points, my_first, domain, config.periodic_statistics);
+    part.points = {};
+    pairs = owned->nearest_distances(first_rows, accepted, config.knn, config.threads, [&](double f) {
+      if (progress) progress(stage, f);
+    });
   });
   std::vector<double> state{0.0};
   pass_along_ranks(ranks.comm, state, [&](std::vector<double>& s) {
@@ -441,18 +253,21 @@ MethodResult run_mpi_method(const Ranks& ranks, const SampleConfig& config, cons
                                                 domain.volume(n), n);
   result.measured = true;
   result.seconds_stats = stopwatch.seconds();
+  if (config.compute_rdf) {
+    const std::string rdf_stage = name + " rdf";
+    if (progress) progress(rdf_stage, 0.0);
+    RdfOptions rdf = config.rdf;
+    rdf.periodic = config.periodic_statistics;
+    run_everywhere(ranks.comm, [&] {
+      result.rdf = owned->radial_distribution(rdf, config.seed, accepted, config.threads, [&](double f) {
+        if (progress) progress(rdf_stage, f);
+      });
+    });
+  }
   return result;
 }
 
 }  // namespace
-
-std::string mpi_refusal(const SampleConfig& config) {
-  // sample --stream measures on the torus and the RDF since the stream2 merge; the ranks' halos do
-  // neither yet (no wrap between the first and last rank, no r_max halo), so refuse rather than differ.
-  if (config.periodic_statistics) return "dfvn-sample-mpi measures in the box: no periodic statistics (sample --stream --periodic has them)";
-  if (config.compute_rdf) return "dfvn-sample-mpi computes no RDF (sample --stream --rdf does)";
-  return stream_refusal(config);
-}
 
 int mpi_slab_count(const SampleConfig& config, int requested, int ranks) {
   const int automatic = stream_slab_count(config, requested);
@@ -476,14 +291,23 @@ double mpi_rank_peak_bytes(const SampleConfig& config, int slabs, int ranks) {
     const MethodPlan plan = plan_method(config, m);
     const double rows = static_cast<double>(std::min<std::uint64_t>(
         plan.requested, slab_rows(config, plan, slabs) * static_cast<std::uint64_t>(slabs_per_rank)));
-    peak = std::max(peak, rows * (56.0 * config.dimension + 64.0));
+    // The RDF's halo reaches r_max (by default 2.5 mean spacings) each side of the rank's range, held
+    // with the rank's points in one set (sample --stream's estimate of a halo point).
+    double halo = 0.0;
+    if (config.compute_rdf && config.compute_statistics) {
+      const double total = static_cast<double>(plan.requested);
+      const double r = config.rdf.r_max > 0.0 ? config.rdf.r_max / plan.domain.side
+                                              : 2.5 / std::pow(total, 1.0 / config.dimension);
+      halo = std::min(total - rows, 2.0 * std::min(1.0, r) * total);
+    }
+    peak = std::max(peak, rows * (56.0 * config.dimension + 64.0) + halo * (16.0 * config.dimension + 48.0));
   }
   return peak;
 }
 
 int check_mpi_run(const SampleConfig& config, int requested_slabs, int ranks) {
   config.validate();
-  if (const std::string why = mpi_refusal(config); !why.empty()) throw std::invalid_argument(why);
+  if (const std::string why = stream_refusal(config); !why.empty()) throw std::invalid_argument(why);
   const int count = mpi_slab_count(config, requested_slabs, ranks);
   const double need = mpi_rank_peak_bytes(config, count, ranks), limit = memory_limit_bytes(config);
   if (need > limit)
@@ -495,16 +319,17 @@ int check_mpi_run(const SampleConfig& config, int requested_slabs, int ranks) {
 
 std::vector<MethodResult> run_mpi_sampling(MPI_Comm comm, const SampleConfig& config, int slabs,
                                            const std::function<std::string(Method)>& point_path, PointFormat format,
-                                           int fail_rank) {
-  const Ranks ranks(comm);
-  int count = 0;
-  run_everywhere(comm, [&] { count = check_mpi_run(config, slabs, ranks.size); });
+                                           const StageProgress& progress, int fail_rank) {
+  int size = 1, count = 0;
+  MPI_Comm_size(comm, &size);
+  run_everywhere(comm, [&] { count = check_mpi_run(config, slabs, size); });
+  const RankSlabs ranks(comm, count);
   std::vector<MethodResult> results;
   bool failed_once = false;
   for (Method m : config.methods) {
     MethodResult r;
     run_everywhere(comm, [&] {
-      r = run_mpi_method(ranks, config, plan_method(config, m), count, point_path, format, fail_rank, failed_once);
+      r = run_mpi_method(ranks, config, plan_method(config, m), point_path, format, progress, fail_rank, failed_once);
     });
     results.push_back(std::move(r));
   }

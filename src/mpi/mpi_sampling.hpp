@@ -20,12 +20,16 @@
 // as in one process. Order statistics (min, q01, median of the distances; the median displacement
 // length) by an exact distributed selection: bisection on the order-preserving 64-bit key of the
 // doubles, with MPI_Allreduce'd counts over each rank's sorted values (64 rounds, no gathering).
-// Nearest neighbours: points go (MPI_Alltoallv) to the rank owning their last coordinate's slab range;
-// each rank receives the points within a halo h of its range from the ranks below and above
-// (MPI_Sendrecv with rank r +- 1, then r +- 2, ... while any point is still within h), and h grows
-// until every distance found is closer than the loaded region's edge (the one-process rule). The
-// distances are Euclidean in the box (--periodic is refused, as under --stream), so the halo does not
-// wrap around from the last rank to rank 0.
+// Nearest neighbours (mpi_neighbours.hpp): points go (MPI_Alltoallv) to the rank owning their last
+// coordinate's slab range; each rank receives (MPI_Alltoallv) the points of the other ranks within a halo h
+// of its range, on the torus (--periodic) also those a side away (the halo wraps: the first and last ranks
+// are neighbours, and with few slabs it spans several ranks or the whole torus), and h grows until every
+// distance found is closer than the loaded region's edge (the one-process rule). --rdf: each rank's query
+// points counted against a halo a little wider than r_max, the fixed-point pair sums added exactly over the
+// ranks (integers, not floating point: mpi_exact.hpp's reduce_rdf_pair_sums).
+//
+// Progress (StageProgress, rank 0's): its slabs generated, its first nearest-neighbour pass, its RDF
+// queries; the stages of sample --stream.
 #pragma once
 
 #include <mpi.h>
@@ -34,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include "dfvn/core/progress.hpp"
 #include "dfvn/experiment/experiment.hpp"
 #include "dfvn/io/point_file.hpp"
 
@@ -44,9 +49,6 @@ struct ReportedElsewhere : std::runtime_error {
   ReportedElsewhere() : std::runtime_error("reported by another rank") {}
 };
 
-// Why `config` cannot run under MPI (one line), or empty: stream_refusal's reasons.
-std::string mpi_refusal(const SampleConfig& config);
-
 // The slab count for `ranks` ranks: `requested` if given (stream_slab_count's checks: a divisor of K for
 // the lattice methods, at most the point count), else the smallest valid count at least both the
 // one-process automatic count and `ranks` (for the lattice methods K when no divisor is that large).
@@ -56,19 +58,20 @@ int mpi_slab_count(const SampleConfig& config, int requested, int ranks);
 // exchange buffers, the KD-tree's copy and the distances (measured: 2^21 7D points in 773 MiB, one rank).
 double mpi_rank_peak_bytes(const SampleConfig& config, int slabs, int ranks);
 
-// Every check before the run, alike on every rank: config.validate(), mpi_refusal, mpi_slab_count, and a
+// Every check before the run, alike on every rank: config.validate(), stream_refusal, mpi_slab_count, and a
 // rank's peak (mpi_rank_peak_bytes) within the memory limit (--max-memory). Returns the slab count;
 // throws std::invalid_argument with one line.
 int check_mpi_run(const SampleConfig& config, int requested_slabs, int ranks);
 
 // Runs every configured method over the ranks of `comm` in `slabs` slabs, writing each method's points
 // to point_path(method) (the same path on every rank; a file, not "-") when point_path is given. The
-// results (without points) are complete on rank 0, equal to run_streamed_sampling's. `fail_rank` >= 0:
+// results (without points; with the RDF under --rdf) are complete on rank 0, equal to run_streamed_sampling's.
+// `progress`: reports of this rank's work (give it on rank 0 only). `fail_rank` >= 0:
 // a test hook, that rank exits abruptly once its share of the first point file (or of the first
 // method's statistics) is done. Throws std::invalid_argument / std::runtime_error with one line on the
 // rank that should report it and ReportedElsewhere on the others.
 std::vector<MethodResult> run_mpi_sampling(MPI_Comm comm, const SampleConfig& config, int slabs,
                                            const std::function<std::string(Method)>& point_path, PointFormat format,
-                                           int fail_rank = -1);
+                                           const StageProgress& progress = {}, int fail_rank = -1);
 
 }  // namespace dfvn

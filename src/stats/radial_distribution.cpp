@@ -91,9 +91,14 @@ void RdfPairSums::add(int bin, double weight) {
 void RdfPairSums::merge(const RdfPairSums& other) {
   if (other.bins_ != bins_ || other.limbs_ != limbs_ || other.low_exponent_ != low_exponent_)
     throw std::logic_error("RDF pair sums of different shapes");
+  merge_words(other.limb_);
+}
+
+void RdfPairSums::merge_words(const std::vector<std::uint64_t>& words) {
+  if (words.size() != limb_.size()) throw std::logic_error("RDF pair sums of different shapes");
   for (int b = 0; b < bins_; ++b) {
     std::uint64_t* s = limb_.data() + static_cast<std::size_t>(b) * static_cast<std::size_t>(limbs_);
-    const std::uint64_t* t = other.limb_.data() + static_cast<std::size_t>(b) * static_cast<std::size_t>(limbs_);
+    const std::uint64_t* t = words.data() + static_cast<std::size_t>(b) * static_cast<std::size_t>(limbs_);
     std::uint64_t carry = 0;
     for (int k = 0; k < limbs_; ++k) {
       const std::uint64_t a = s[k] + t[k];

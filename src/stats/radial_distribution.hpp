@@ -59,6 +59,12 @@ class RdfPairSums {
   void merge(const RdfPairSums& other);  // same bins and range
   double sum(int bin) const;             // correctly rounded
   int bins() const { return bins_; }
+  // The fixed-point integers themselves, for exact reductions beyond one process (dfvn-sample-mpi adds
+  // them over ranks as integers, mpi/mpi_exact.hpp): bins() numbers of limbs() 64-bit limbs each, least
+  // significant limb first, and the merge of such words from a sum of the same bins and range.
+  int limbs() const { return limbs_; }
+  const std::vector<std::uint64_t>& words() const { return limb_; }
+  void merge_words(const std::vector<std::uint64_t>& words);  // words.size() == words().size()
 
  private:
   int bins_ = 0, limbs_ = 0, low_exponent_ = 0;  // value = sum_k limb_k 2^(64 k + low_exponent_)

@@ -2,8 +2,10 @@
 # Issue 28 item 2, MPI: dfvn-sample-mpi under `mpirun -np 1`, `-np 2` and `-np 3` (oversubscribed on a
 # 2-core machine) must write the point files and statistics CSV of one process's
 # `dfvn-sample sample --stream` byte for byte (cmp, --no-timing), for 4D-7D lattices, the torus and the
-# cube (conformant and drop), every point format, fewer slabs than ranks, any thread count; and refuse bad
-# input with one line, a non-zero exit and no file (a rank that dies included: DFVN_MPI_FAIL_RANK).
+# cube (conformant and drop), every point format, fewer slabs than ranks, any thread count; with
+# --periodic (statistics on the torus: the halo wraps), --rdf and --json the same three files as
+# sample --stream and in-memory sample; and refuse bad input with one line, a non-zero exit and no file
+# (a rank that dies included: DFVN_MPI_FAIL_RANK).
 # Registered by ctest only with -DDFVN_MPI=ON. $DFVN_SAMPLE: the one-process binary; $DFVN_SAMPLE_MPI:
 # the MPI binary; $MPIEXEC: mpirun.
 set -u
@@ -78,6 +80,64 @@ rm -rf "$work/a" "$work/b"
   cmp -s "$work/a/cnj.npy" "$work/b/cnj.npy" && cmp -s "$work/a/sobol.npy" "$work/b/sobol.npy" &&
   ok || bad "--no-stats point files differ"
 
+# same_as_memory NAME ARGS...: in-memory `sample`, `sample --stream` and dfvn-sample-mpi with 1, 2 and 3
+# ranks (and $MPI_EXTRA), each writing the stats CSV, --rdf CSV, --json and npy point files: all the same
+# bytes (issue 28: --periodic and --rdf over MPI).
+same_as_memory() {
+  local name=$1
+  shift
+  local outputs=(--no-timing --points pts --format npy -o stats.csv --rdf rdf.csv --json run.json)
+  rm -rf "$work/mem" "$work/one" && mkdir -p "$work/mem" "$work/one"
+  if ! (cd "$work/mem" && "$bin" sample "$@" "${outputs[@]}" -q) 2>"$work/err" ||
+    ! (cd "$work/one" && "$bin" sample "$@" --stream "${outputs[@]}" -q) 2>"$work/err"; then
+    bad "$name: one process: $(head -c 300 "$work/err")"
+    return
+  fi
+  local files=(stats.csv rdf.csv run.json)
+  for f in "$work/one"/pts/*; do files+=("pts/${f##*/}"); done
+  [[ ${#files[@]} -gt 3 && $(wc -l <"$work/one/rdf.csv") -gt 1 ]] || { bad "$name: no point files or RDF rows"; return; }
+  local differ=()
+  for f in "${files[@]}"; do cmp -s "$work/mem/$f" "$work/one/$f" || differ+=("$f"); done
+  [[ ${#differ[@]} -eq 0 ]] && ok || bad "$name: sample --stream and in memory: ${differ[*]} differ"
+  for np in 1 2 3; do
+    rm -rf "$work/mpi" && mkdir -p "$work/mpi"
+    # shellcheck disable=SC2086
+    if ! (cd "$work/mpi" && run_mpi "$np" "$@" ${MPI_EXTRA:-} "${outputs[@]}") 2>"$work/err"; then
+      bad "$name: -np $np: $(head -c 300 "$work/err")"
+      continue
+    fi
+    differ=()
+    for f in "${files[@]}"; do cmp -s "$work/one/$f" "$work/mpi/$f" || differ+=("$f"); done
+    [[ ${#differ[@]} -eq 0 ]] && ok || bad "$name (-np $np): ${differ[*]} differ"
+  done
+}
+# The torus (--periodic) and the box, with and without --rdf's query subset, 4D-7D; sobol's paper box
+# [0, 0.1 K]^N is a torus of another side.
+same_as_memory "4D torus, periodic" --dim 4 --grid 6 --methods $all --periodic
+same_as_memory "4D cube, periodic" --dim 4 --grid 6 --methods cnj,jitter --domain cube --periodic --seed 5
+same_as_memory "5D box" --dim 5 --grid 5 --methods $all --rdf-queries 400 --rdf-bins 30
+same_as_memory "5D cube, periodic" --dim 5 --grid 5 --methods cnj,sobol --domain cube --periodic --rdf-max 0.2
+same_as_memory "6D count, periodic" --dim 6 -n 3000 --methods random,sobol --periodic --rdf-queries 500
+same_as_memory "7D torus, periodic" --dim 7 --grid 4 --methods cnj,jitter --periodic --rdf-queries 1000 --rdf-bins 20
+# The halo wrapping over several ranks and the whole torus: one slab (ranks 1 and 2 have none), two slabs
+# on three ranks, and one thread.
+MPI_EXTRA="--slabs 1" same_as_memory "4D periodic, one slab" --dim 4 --grid 6 --methods cnj,random --periodic
+MPI_EXTRA="--slabs 2 --threads 1" same_as_memory "5D periodic, two slabs" --dim 5 --grid 4 --methods jitter,sobol --periodic
+MPI_EXTRA="--slabs 3" same_as_memory "4D box, three slabs" --dim 4 --grid 6 --methods jitter --rdf-max 0.4
+# --periodic must change the statistics for the tests above to mean anything.
+run_mpi 2 --dim 4 --grid 6 --methods jitter --no-timing -o "$work/box.csv" 2>/dev/null
+run_mpi 2 --dim 4 --grid 6 --methods jitter --no-timing --periodic -o "$work/torus.csv" 2>/dev/null
+[[ -s $work/box.csv && -s $work/torus.csv ]] && ! cmp -s "$work/box.csv" "$work/torus.csv" && ok ||
+  bad "--periodic gave the box's statistics"
+# The JSON names the experiment's program, as sample's does (so that the files compare equal).
+grep -q '"program": *"dfvn-sample"' "$work/mpi/run.json" && ok || bad "run.json: $(head -c 200 "$work/mpi/run.json")"
+# --progress always: rank 0's plain lines, prefixed with dfvn-sample-mpi; -q: none.
+run_mpi 2 --dim 4 --grid 6 --methods jitter --rdf "$work/p.rdf" --progress always -o "$work/p.csv" 2>"$work/err"
+grep -q "^dfvn-sample-mpi: \[1/3\] jitter" "$work/err" && grep -q "^dfvn-sample-mpi: \[3/3\] jitter rdf" "$work/err" && ok ||
+  bad "--progress always: $(head -c 300 "$work/err")"
+run_mpi 2 --dim 4 --grid 6 --methods jitter --rdf "$work/p.rdf" --progress always -q -o "$work/p.csv" 2>"$work/err"
+[[ ! -s $work/err ]] && ok || bad "-q: $(head -c 300 "$work/err")"
+
 # Bad input: one line "dfvn-sample-mpi: error: ...", a non-zero exit, nothing on stdout, no file.
 expect_mpi_error() {
   local name=$1 np=$2 pattern=$3
@@ -105,6 +165,17 @@ expect_mpi_error "a rank's share past --max-memory" 2 "run on more ranks" \
 touch "$work/bad/file"
 expect_mpi_error "unwritable points" 3 "" --dim 4 --grid 6 --methods cnj --points "$work/bad/file/pts" -o "$work/bad/s.csv"
 expect_mpi_error "unwritable stats" 2 "" --dim 4 --grid 6 --methods cnj -o "$work/bad/file/s.csv"
+expect_mpi_error "--rdf with --no-stats" 2 "--no-stats computes no statistics" \
+  --dim 4 --grid 6 --methods cnj --no-stats --points "$work/bad/p" --rdf "$work/bad/r.csv"
+expect_mpi_error "periodic r_max past half the side" 3 "--rdf-max 0.5 with --periodic must be below half" \
+  --dim 4 --grid 6 --methods jitter --periodic --rdf "$work/bad/r.csv" --rdf-max 0.5 -o "$work/bad/s.csv" --json "$work/bad/j.json"
+expect_mpi_error "RDF bins too narrow" 2 "too narrow" --dim 4 --grid 6 --methods jitter --rdf "$work/bad/r.csv" \
+  --rdf-max 1e-300 -o "$work/bad/s.csv"
+expect_mpi_error "unwritable --rdf" 2 "" --dim 4 --grid 6 --methods cnj -o "$work/bad/s.csv" --rdf "$work/bad/file/r.csv" \
+  --json "$work/bad/j.json"
+expect_mpi_error "unwritable --json" 3 "" --dim 4 --grid 6 --methods cnj --periodic -o "$work/bad/s.csv" \
+  --rdf "$work/bad/r.csv" --json "$work/bad/file/j.json" --points "$work/bad/p"
+expect_mpi_error "--rdf and --json both on stdout" 2 "" --dim 4 --grid 6 --methods cnj -o "$work/bad/s.csv" --rdf - --json -
 [[ $(ls -A "$work/bad") == file ]] && ok || bad "a refused run left a file: $(ls -A "$work/bad")"
 # A rank that dies: after writing its share of the points (rank 1 of 3, and rank 0, whose survivors
 # remove the temporary when mpirun stops them), and before the statistics (rank 2, no --points).
@@ -120,7 +191,8 @@ DFVN_MPI_FAIL_RANK=2 expect_mpi_error "rank 2 dies" 3 "rank 2 stops before the s
 [[ ! -e $work/dies/s.csv ]] && ok || bad "rank 2 died: the stats file was written"
 # --help names every option with its default.
 run_mpi 1 --help >"$work/help" 2>&1
-for option in --dim --grid --count --methods --slabs --points --format --no-timing --seed --threads --domain; do
+for option in --dim --grid --count --methods --slabs --points --format --no-timing --seed --threads --domain \
+  --periodic --rdf --rdf-max --rdf-bins --rdf-queries --json --progress --quiet; do
   grep -q -- "$option" "$work/help" && ok || bad "--help does not name $option"
 done
 # The bash completion (scripts/dfvn-sample-completion.bash) reads dfvn-sample-mpi's own --help.

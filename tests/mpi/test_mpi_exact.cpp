@@ -1,11 +1,13 @@
 // The exact reductions of src/mpi/mpi_exact.hpp under mpirun (any number of ranks): pass_along_ranks
 // gives the bits of one sequential sum (where a per-rank partial sum reduced with MPI_SUM differs in the
 // last bits, checked too so that the test can tell them apart), select_ranks the values
-// std::nth_element gives over all values, duplicates, zeros and negatives included. Plain main (exit
-// status), run by ctest as mpi_exact with 1, 2 and 3 ranks.
+// std::nth_element gives over all values, duplicates, zeros and negatives included; reduce_rdf_pair_sums
+// the fixed-point RDF sums of one process adding every weight (carries across limbs included). Plain main
+// (exit status), run by ctest as mpi_exact with 1, 2 and 3 ranks.
 #include <mpi.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -68,6 +70,25 @@ int main(int argc, char** argv) {
   for (std::size_t j = 0; j < ranks.size(); ++j) check(same_bits(got[j], everything[ranks[j]]), "select_ranks: a wrong value");
   const double median = dfvn::distributed_median(MPI_COMM_WORLD, sorted, kCount);
   check(same_bits(median, everything[kCount / 2]), "distributed_median (odd count)");
+
+  // RDF pair sums: weights over many binades (every limb carries), each rank adding its share into its own
+  // sums; the reduction must give the integers, so the doubles, of one sums adding them all.
+  {
+    constexpr int kBins = 7;
+    constexpr double kLow = 1.0 / 4096.0, kHigh = 4096.0;
+    std::mt19937_64 weights(11);
+    std::uniform_real_distribution<double> exponent(-12.0, 12.0);
+    std::vector<double> w(20011);
+    for (double& x : w) x = std::min(kHigh, std::max(kLow, std::exp2(exponent(weights))));
+    dfvn::RdfPairSums one(kBins, kLow, kHigh), part = one.empty_copy();
+    for (std::size_t i = 0; i < w.size(); ++i) {
+      one.add(static_cast<int>(i % kBins), w[i]);
+      if (i * static_cast<std::size_t>(size) / w.size() == static_cast<std::size_t>(rank)) part.add(static_cast<int>(i % kBins), w[i]);
+    }
+    dfvn::reduce_rdf_pair_sums(MPI_COMM_WORLD, part);
+    for (int b = 0; b < kBins; ++b) check(same_bits(part.sum(b), one.sum(b)), "reduce_rdf_pair_sums: not one process's sum");
+    check(part.words() == one.words(), "reduce_rdf_pair_sums: not one process's integers");
+  }
 
   int any = failures, total = 0;
   MPI_Allreduce(&any, &total, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
