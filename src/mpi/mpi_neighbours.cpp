@@ -191,7 +191,8 @@ std::vector<std::pair<std::uint64_t, double>> OwnedPoints::nearest_distances(con
       } else {
         // Few pending points (later attempts): each against every point of the set, by distance_between
         // (periodic_distance_between on the torus), the functions through which the KD-trees report their
-        // distances too (the same bits); else the KD-tree over the whole set, as one process measures.
+        // distances too (the same bits); else the KD-tree over the whole set, as one process measures, with
+        // only the pending points queried (the halo's distances were thrown away).
         std::vector<double> found;
         if (static_cast<double>(pending.size()) * static_cast<double>(set.size()) <= 5e7) {
           found.assign(pending.size(), std::numeric_limits<double>::infinity());
@@ -201,8 +202,9 @@ std::vector<std::pair<std::uint64_t, double>> OwnedPoints::nearest_distances(con
                 found[j] = std::min(found[j], periodic_ ? periodic_distance_between(set, j, k) : distance_between(set, j, k));
         } else {
           const FractionProgress report = attempt == 0 ? progress : FractionProgress{};
-          found = periodic_ ? periodic_nearest_neighbour_distances(set, threads, report)
-                            : nearest_neighbour_distances(set, knn, threads, report);
+          // The tree over the whole set, queried for the pending points only (the set's first rows).
+          found = periodic_ ? periodic_nearest_neighbour_distances_of_first(set, pending.size(), threads, report)
+                            : nearest_neighbour_distances_of_first(set, pending.size(), knn, threads, report);
         }
         // The one-process stream's rule (streamed_sampling.cpp, measure_bucket): a point outside [lo, hi)
         // (and, on the torus, its images) is at least the margin from the query in its last coordinate.
