@@ -1,5 +1,6 @@
 // The work of one CNJ point in 7D (one RK4 step + Gauss-Newton reprojection on the 6^7 paper lattice: the
-// main job's step count, traced in the free field; drop mode's default of two steps costs about twice):
+// main job's step count, traced in the free field; drop mode's default of two steps costs about twice; or,
+// with a third argument, the library's CNJ on the torus or in the cube, conformant):
 // traces the first `points` lattice points on one thread and prints the field evaluations and
 // reprojection updates per point, and the arithmetic floor those need. scripts/count_cnj_work.sh runs
 // it under callgrind at two sizes; the difference in instructions / difference in points is the
@@ -21,6 +22,7 @@
 //     2(N-1)^2 (N - (N-1)/3), R^T solve (N-1)^2, Q application 4N(N-1), residual N-1, step N.
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 
 #include "dfvn/integrate/trace.hpp"
 #include "dfvn/sampling/curl_noise_jitter.hpp"
@@ -56,27 +58,46 @@ int main(int argc, char** argv) {
   const long points = argc > 1 ? std::atol(argv[1]) : 10000;
   dfvn::CnjOptions options;
   if (argc > 2) options.noise = dfvn::parse_noise_basis(argv[2]);
+  const std::string mode = argc > 3 ? argv[3] : "free";
   const dfvn::LatticeSpec lattice{N, 6, dfvn::Protocol::paper};
-  if (points < 1 || points > static_cast<long>(lattice.point_count())) {
-    std::fprintf(stderr, "usage: count_cnj_work [points in 1..%llu] [noise basis]\n", static_cast<unsigned long long>(lattice.point_count()));
+  if (points < 1 || points > static_cast<long>(lattice.point_count()) || (mode != "free" && mode != "torus" && mode != "cube")) {
+    std::fprintf(stderr, "usage: count_cnj_work [points in 1..%llu] [noise basis] [free|torus|cube]\n",
+                 static_cast<unsigned long long>(lattice.point_count()));
     return 2;
   }
-  const double time = options.step_scale * dfvn::average_neighbour_distance(N) * lattice.spacing();
-  const dfvn::DfvnField<N> field(1, dfvn::FieldOptions{options.noise, options.frequency / lattice.spacing()});
-  const dfvn::Tracer<N> tracer(field, dfvn::cnj_trace_options(options));
   dfvn::TraceStats stats;
   double checksum = 0.0;
-  for (long i = 0; i < points; ++i) {
-    dfvn::Vec<N> x0;
-    lattice.point(static_cast<std::uint64_t>(i), x0.data());
-    checksum += tracer.trace(x0, time, &stats).sum();
+  std::uint64_t retraced = 0;
+  if (mode == "free") {
+    const double time = options.step_scale * dfvn::average_neighbour_distance(N) * lattice.spacing();
+    const dfvn::DfvnField<N> field(1, dfvn::FieldOptions{options.noise, options.frequency / lattice.spacing()});
+    const dfvn::Tracer<N> tracer(field, dfvn::cnj_trace_options(options));
+    for (long i = 0; i < points; ++i) {
+      dfvn::Vec<N> x0;
+      lattice.point(static_cast<std::uint64_t>(i), x0.data());
+      checksum += tracer.trace(x0, time, &stats).sum();
+    }
+  } else {
+    // The library's own CNJ of the first `points` lattice rows, on one thread: on the torus (the main job's
+    // default: the periodic basis, the free field's steps) or in the cube, conformant (the bounded field,
+    // one step, traces that end outside retraced with more steps).
+    options.domain = mode == "torus" ? dfvn::CnjDomain::torus : dfvn::CnjDomain::cube;
+    options.domain_mode = dfvn::DomainMode::conformant;
+    const dfvn::CnjResult r = dfvn::curl_noise_jitter_range(lattice, options, 1, 0, static_cast<std::uint64_t>(points), 1);
+    stats = r.trace_stats;
+    retraced = r.retraced;
+    for (double c : r.points.coordinates) checksum += c;
   }
   const auto per_point = [&](std::int64_t count) { return static_cast<double>(count) / static_cast<double>(points); };
   const double evaluations = per_point(stats.field_evaluations);
   const double updates = per_point(stats.reprojection_updates + stats.skipped_updates);
+  // The floor counts the free field's arithmetic for the evaluations and updates made: what the bounded
+  // field's wall factor and the torus' knot masks add per evaluation shows in the ratio, not in the floor.
   const double floor = evaluations * floor_per_evaluation(options.noise) + updates * floor_per_update() + 10 * N;
-  std::printf("points %ld\nfield_evaluations_per_point %.4f\nreprojection_updates_per_point %.4f\n"
-              "floor_ops_per_evaluation %.0f\nfloor_ops_per_update %.0f\nfloor_ops_per_point %.0f\nchecksum %.17g\n",
-              points, evaluations, updates, floor_per_evaluation(options.noise), floor_per_update(), floor, checksum);
+  std::printf("mode %s\npoints %ld\nfield_evaluations_per_point %.4f\nreprojection_updates_per_point %.4f\n"
+              "retraced_fraction %.4f\nfloor_ops_per_evaluation %.0f\nfloor_ops_per_update %.0f\nfloor_ops_per_point %.0f\n"
+              "checksum %.17g\n",
+              mode.c_str(), points, evaluations, updates, static_cast<double>(retraced) / static_cast<double>(points),
+              floor_per_evaluation(options.noise), floor_per_update(), floor, checksum);
   return 0;
 }
