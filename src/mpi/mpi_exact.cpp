@@ -9,6 +9,7 @@
 
 #include "dfvn/mpi/mpi_sampling.hpp"
 #include "dfvn/stats/nearest_neighbour.hpp"
+#include "dfvn/stats/radial_distribution.hpp"
 
 namespace dfvn {
 
@@ -109,16 +110,8 @@ void add_fixed_point(void* in, void* inout, int* len, MPI_Datatype* type) {
   const int limbs = bytes / static_cast<int>(sizeof(std::uint64_t));
   const auto* a = static_cast<const std::uint64_t*>(in);
   auto* s = static_cast<std::uint64_t*>(inout);
-  for (int e = 0; e < *len; ++e, a += limbs, s += limbs) {
-    std::uint64_t carry = 0;
-    for (int k = 0; k < limbs; ++k) {
-      const std::uint64_t t = s[k] + a[k];
-      const std::uint64_t c1 = t < s[k];
-      s[k] = t + carry;
-      carry = c1 | (s[k] < t);
-    }
-    if (carry) fixed_point_overflow = 1;
-  }
+  for (int e = 0; e < *len; ++e, a += limbs, s += limbs)
+    if (add_fixed_point_limbs(s, a, limbs)) fixed_point_overflow = 1;
 }
 
 }  // namespace

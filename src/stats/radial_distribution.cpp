@@ -97,17 +97,20 @@ void RdfPairSums::merge(const RdfPairSums& other) {
 void RdfPairSums::merge_words(const std::vector<std::uint64_t>& words) {
   if (words.size() != limb_.size()) throw std::logic_error("RDF pair sums of different shapes");
   for (int b = 0; b < bins_; ++b) {
-    std::uint64_t* s = limb_.data() + static_cast<std::size_t>(b) * static_cast<std::size_t>(limbs_);
-    const std::uint64_t* t = words.data() + static_cast<std::size_t>(b) * static_cast<std::size_t>(limbs_);
-    std::uint64_t carry = 0;
-    for (int k = 0; k < limbs_; ++k) {
-      const std::uint64_t a = s[k] + t[k];
-      const std::uint64_t c1 = a < s[k];
-      s[k] = a + carry;
-      carry = c1 | (s[k] < a);
-    }
-    if (carry) throw std::logic_error("an RDF pair sum overflowed");
+    const std::size_t at = static_cast<std::size_t>(b) * static_cast<std::size_t>(limbs_);
+    if (add_fixed_point_limbs(limb_.data() + at, words.data() + at, limbs_)) throw std::logic_error("an RDF pair sum overflowed");
   }
+}
+
+bool add_fixed_point_limbs(std::uint64_t* sum, const std::uint64_t* addend, int limbs) {
+  std::uint64_t carry = 0;
+  for (int k = 0; k < limbs; ++k) {
+    const std::uint64_t a = sum[k] + addend[k];
+    const std::uint64_t c1 = a < sum[k];
+    sum[k] = a + carry;
+    carry = c1 | (sum[k] < a);
+  }
+  return carry != 0;
 }
 
 double RdfPairSums::sum(int bin) const {

@@ -45,6 +45,10 @@ RdfCurve radial_distribution(const PointSet& points, const RdfOptions& options, 
 // slab's query points against the slab and a halo holding every point within r_max of them). The curve
 // depends only on the pair sums, which are exact, so parts counted in any order give the same bits.
 
+// sum += addend for one fixed-point integer of `limbs` 64-bit limbs, least significant first (RdfPairSums'
+// bins, and their reduction over MPI ranks); true if it carried out of the top limb.
+bool add_fixed_point_limbs(std::uint64_t* sum, const std::uint64_t* addend, int limbs);
+
 // Every bin's sum of pair weights as a fixed-point integer wide enough for every weight of the run (the
 // range given) and 2^64 of them: additions in any order (threads, slabs) give the same sum, rounded to the
 // nearest double once, by sum().
