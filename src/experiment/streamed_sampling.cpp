@@ -16,6 +16,7 @@
 
 #include <fmt/format.h>
 
+#include "dfvn/core/interval_union.hpp"
 #include "dfvn/core/stopwatch.hpp"
 #include "dfvn/io/atomic_file.hpp"
 #include "dfvn/sampling/jitter.hpp"
@@ -500,22 +501,15 @@ class NearestStream {
   // torus around it. d[q] becomes the smaller of the two distances.
   void remeasure(int b, const LoadedBucket& l, const std::vector<std::uint64_t>& unsure, std::vector<double>& d) {
     const double side = domain_.side;
-    std::vector<std::pair<double, double>> windows;
+    std::vector<IntervalUnion::Interval> reaches;
     for (std::uint64_t q : unsure) {
       const double z = l.set.point(q)[n_ - 1], reach = d[q] * (1.0 + 1e-6) + 1e-9 * side;
-      windows.emplace_back(z - reach, z + reach);
+      reaches.emplace_back(z - reach, z + reach);
     }
-    std::sort(windows.begin(), windows.end());
-    std::vector<std::pair<double, double>> merged;
-    for (const auto& w : windows)
-      if (!merged.empty() && w.first <= merged.back().second) merged.back().second = std::max(merged.back().second, w.second);
-      else merged.push_back(w);
-    const auto in_window = [&](double z) {
-      const auto it = std::upper_bound(merged.begin(), merged.end(), std::make_pair(z, std::numeric_limits<double>::infinity()));
-      return it != merged.begin() && z <= std::prev(it)->second;
-    };
+    const IntervalUnion windows(std::move(reaches));
+    const auto& merged = windows.intervals();
     const auto near = [&](double z) {
-      return in_window(z) || (periodic_ && (in_window(z - side) || in_window(z + side)));
+      return windows.contains(z) || (periodic_ && (windows.contains(z - side) || windows.contains(z + side)));
     };
     // The set: the unsure points first, then the candidates from the other buckets (bucket b is loaded
     // whole). A bucket is read if its range, widened by a slack (its first and last take every point below

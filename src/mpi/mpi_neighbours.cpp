@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "dfvn/core/interval_union.hpp"
 #include "dfvn/mpi/mpi_exact.hpp"
 #include "dfvn/stats/periodic_neighbours.hpp"
 
@@ -151,27 +152,18 @@ std::vector<std::pair<std::uint64_t, double>> OwnedPoints::nearest_distances(con
       // point's nearest neighbour is no farther than the point found before, which is still loaded, so
       // it lies in its window, on the torus possibly a side away; only the few points near the range's
       // edges are measured again).
-      std::vector<std::pair<double, double>> windows;
+      std::vector<IntervalUnion::Interval> reaches;
       if (attempt > 0) {
         for (std::uint64_t q : pending) {
           const double z = owned[q * record + n], reach = d[q] * (1.0 + 1e-6) + 1e-9 * side;
-          windows.emplace_back(std::isfinite(reach) ? z - reach : -std::numeric_limits<double>::infinity(),
+          reaches.emplace_back(std::isfinite(reach) ? z - reach : -std::numeric_limits<double>::infinity(),
                                std::isfinite(reach) ? z + reach : std::numeric_limits<double>::infinity());
         }
-        std::sort(windows.begin(), windows.end());
-        std::vector<std::pair<double, double>> merged;
-        for (const auto& w : windows)
-          if (!merged.empty() && w.first <= merged.back().second) merged.back().second = std::max(merged.back().second, w.second);
-          else merged.push_back(w);
-        windows = std::move(merged);
       }
-      const auto in_window = [&](double z) {
-        auto it = std::upper_bound(windows.begin(), windows.end(), std::make_pair(z, std::numeric_limits<double>::infinity()));
-        return it != windows.begin() && z <= std::prev(it)->second;
-      };
+      const IntervalUnion windows(std::move(reaches));
       const auto in_windows = [&](double z) {
         if (attempt == 0) return true;
-        return in_window(z) || (periodic_ && (in_window(z + side) || in_window(z - side)));
+        return windows.contains(z) || (periodic_ && (windows.contains(z + side) || windows.contains(z - side)));
       };
       PointSet set{n, {}, domain_};
       std::vector<char> is_pending(queries, 0);
