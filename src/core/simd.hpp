@@ -10,9 +10,10 @@ enum class Simd {
   baseline,  // SSE2, which every x86-64 CPU has
 };
 
-// Whether this CPU runs the AVX2 builds (Sobol's scramble, the turning-bands evaluation kernel) and the
-// AVX-512 build (F, DQ and VL: the turning-bands evaluation kernel). False off x86-64, where only the baseline build exists. The kernels and
-// the tests that compare their builds ask the same question here.
+// Whether this CPU runs the AVX2 builds (Sobol's scramble, the turning-bands evaluation kernel, the
+// nearest-neighbour search) and the AVX-512 builds (F, DQ and VL: the turning-bands evaluation kernel, the
+// nearest-neighbour search). False off x86-64, where only the baseline build exists. The kernels and the
+// tests that compare their builds ask the same question here.
 inline bool cpu_has_avx2() {
 #if defined(__x86_64__)
   return __builtin_cpu_supports("avx2");

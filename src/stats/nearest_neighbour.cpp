@@ -45,20 +45,21 @@ std::vector<double> nearest_neighbour_distances_nanoflann(const PointSet& points
     throw std::invalid_argument("the nanoflann nearest-neighbour search takes at most 2^32 - 1 points");
   const PointSetAdaptor<N> adaptor{points};
   const KdTree<N> tree(N, adaptor, kd_tree_params(nearest_other::kLeafSize));  // built by its constructor
-  const nearest_other::Index<N> index(points, tree);
-  const auto kernel = nearest_other::nearest_rows_kernel<N>(Simd::best);
   std::vector<double> distances(queries);
-  const std::uint32_t* original = index.original();
-  const auto& leaves = index.leaves();
-  const auto limit = static_cast<std::uint32_t>(queries);
-  // Chunks of leaves; progress counts leaves done over leaves.
-  neighbour_loop::for_every_chunk(leaves.size(), threads, progress, [&](std::size_t begin, std::size_t end) {
-    nearest_other::Scratch scratch = nearest_other::make_scratch(index);
-    const std::size_t first = leaves[begin].first, last = leaves[end - 1].first + leaves[end - 1].count;
-    std::vector<std::uint32_t> nearest(last - first);
-    kernel(index, begin, end, limit, nearest.data(), scratch);
-    for (std::size_t r = first; r < last; ++r)
-      if (original[r] < limit) distances[original[r]] = distance_between(points, original[r], original[nearest[r - first]]);
+  nearest_other::with_kernel<N>(Simd::best, [&]<int Lanes>(nearest_other::Kernel<N, Lanes> kernel) {
+    const nearest_other::Index<N, Lanes> index(points, tree);
+    const std::uint32_t* original = index.original();
+    const auto& leaves = index.leaves();
+    const auto limit = static_cast<std::uint32_t>(queries);
+    // Chunks of leaves; progress counts leaves done over leaves.
+    neighbour_loop::for_every_chunk(leaves.size(), threads, progress, [&](std::size_t begin, std::size_t end) {
+      nearest_other::Scratch scratch = nearest_other::make_scratch(index);
+      const std::size_t first = leaves[begin].first, last = leaves[end - 1].first + leaves[end - 1].count;
+      std::vector<std::uint32_t> nearest(last - first);
+      kernel.rows(index, begin, end, limit, nearest.data(), scratch);
+      for (std::size_t r = first; r < last; ++r)
+        if (original[r] < limit) distances[original[r]] = distance_between(points, original[r], original[nearest[r - first]]);
+    });
   });
   return distances;
 }

@@ -4,15 +4,20 @@
 // Rows are queried leaf after leaf; each query first takes its nearest point within its own leaf and
 // within the leaf where the previous query found its nearest point (a tight radius before the descent)
 // and skips those leaves later; a leaf that the descent reaches is scanned only if its bounding box is
-// within the radius. Leaves store their points four to a block,
-// coordinate by coordinate, so that one vector instruction takes a coordinate of four points.
+// within the radius. Leaves store their points a block of Lanes at a time (4, or 8 for the AVX-512
+// build), coordinate by coordinate, so that one vector instruction takes a coordinate of a whole block.
 //
 // The answer is the same as nanoflann's k = 2 self-query: the minimum over the other points of the
 // squared distance summed over axes in order, each (x - q)^2 rounded as distance_between() rounds it
 // (every lane sums its own axes in order; no fused multiply-adds: see CMakeLists.txt), so the distance
-// of the row found is the same bits whichever of two tied rows is found. A subtree or leaf is pruned only
-// when its lower bound exceeds the best squared distance by a relative margin (1e-9) far above the bound's
-// rounding (a few units in the last place), so no closer point is ever pruned.
+// of the row found is the same bits whichever of two tied rows is found, in every build and for every
+// leaf size. A subtree or leaf is pruned only when its lower bound exceeds the best squared distance by a
+// relative margin (1e-9) far above the bound's rounding (a few units in the last place), so no closer
+// point is ever pruned.
+//
+// Use: build the tree with leaves of up to kLeafSize points; with_kernel<N>(simd, f) calls
+// f(Kernel<N, Lanes>) with the build this CPU runs; in f, build an Index<N, Lanes> over the tree and call
+// kernel.rows leaf range by leaf range (each thread with its own make_scratch).
 #pragma once
 
 #include <algorithm>
@@ -22,32 +27,34 @@
 #include <stdexcept>
 #include <vector>
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 #include "dfvn/core/point_set.hpp"
 #include "dfvn/core/simd.hpp"
 #include "dfvn/stats/kd_tree.hpp"
 
 namespace dfvn::nearest_other {
 
-inline constexpr int kLanes = 4;
-// Leaves of up to 32 points: with four points to a vector a leaf costs little more to scan than a node
-// to pass, and fewer, larger leaves mean fewer nodes per query. Against 10 (nanoflann's default, kept by
-// the other trees of stats/), the 7D main job's sets took 1.6-2x less CPU time in this search; 24-48 were
-// alike, and 2D-5D sets of 2^18 points were no slower (bench/results.md).
-inline constexpr int kLeafSize = 32;
 inline constexpr double kPruneMargin = 1.0 + 1e-9;
 
+// A leaf's bounding box: N lower coordinates padded with zeros to kBoxLanes, then the N upper ones.
 template <int N>
+inline constexpr int kBoxLanes = (N + 3) / 4 * 4;
+
+template <int N, int Lanes>
 class Index {
  public:
+  // 24 bytes. Nodes are stored depth first, so an internal node's first child is the next node.
   struct Node {
-    std::int32_t child1 = -1, child2 = -1;  // -1: a leaf
-    std::int32_t cut = 0;                   // internal: the axis cut
-    std::uint32_t leaf = 0;                 // a leaf's index in leaves()
-    double low = 0.0, high = 0.0;           // internal: child1's points lie at or below low, child2's at or above high
+    double low = 0.0, high = 0.0;  // internal: child1's points lie at or below low, child2's at or above high
+    std::int32_t child2 = -1;      // internal: the second child
+    std::int32_t cut = 0;          // internal: the axis cut (>= 0); a leaf: -1 - its index in leaves()
   };
   struct Leaf {
     std::uint32_t first = 0, count = 0;  // rows [first, first + count)
-    std::uint32_t block = 0;             // its first block of kLanes points (ceil(count / kLanes) blocks)
+    std::uint32_t block = 0;             // its first block of Lanes points (ceil(count / Lanes) blocks)
     std::uint32_t node = 0;              // its node
   };
 
@@ -58,26 +65,26 @@ class Index {
     for (std::size_t l = 1; l < leaves_.size(); ++l)
       if (leaves_[l].first != leaves_[l - 1].first + leaves_[l - 1].count) throw std::logic_error("KD-tree leaves out of row order");
     std::size_t blocks = 0;
-    for (const Leaf& leaf : leaves_) blocks += (leaf.count + kLanes - 1) / kLanes;
-    blocks_ = Coordinates(blocks * N * kLanes);  // without zero-fill, on huge pages when large (core/bulk_memory.hpp)
+    for (const Leaf& leaf : leaves_) blocks += (leaf.count + Lanes - 1) / Lanes;
+    blocks_ = Coordinates(blocks * N * Lanes);  // without zero-fill, on huge pages when large (core/bulk_memory.hpp)
     for (const Leaf& leaf : leaves_)
-      for (std::uint32_t j = 0; j < (leaf.count + kLanes - 1) / kLanes * kLanes; ++j) {
-        double* block = blocks_.data() + (leaf.block + j / kLanes) * N * kLanes;
+      for (std::uint32_t j = 0; j < (leaf.count + Lanes - 1) / Lanes * Lanes; ++j) {
+        double* block = blocks_.data() + (leaf.block + j / Lanes) * N * Lanes;
         const double* x = j < leaf.count ? points.point(original_[leaf.first + j]) : nullptr;
         for (int k = 0; k < N; ++k)  // padding lanes at +inf: their squared distance is +inf, never a minimum
-          block[k * kLanes + j % kLanes] = x ? x[k] : std::numeric_limits<double>::infinity();
+          block[k * Lanes + j % Lanes] = x ? x[k] : std::numeric_limits<double>::infinity();
       }
     leaf_of_row_.resize(leaves_.empty() ? 0 : leaves_.back().first + leaves_.back().count);
     for (std::size_t l = 0; l < leaves_.size(); ++l)
       std::fill_n(leaf_of_row_.begin() + leaves_[l].first, leaves_[l].count, static_cast<std::uint32_t>(l));
-    leaf_boxes_.assign(leaves_.size() * 2 * kBoxLanes, 0.0);
+    leaf_boxes_.assign(leaves_.size() * 2 * kBoxLanes<N>, 0.0);
     for (std::size_t l = 0; l < leaves_.size(); ++l) {
-      double* box = leaf_boxes_.data() + l * 2 * kBoxLanes;
-      for (int k = 0; k < N; ++k) box[k] = std::numeric_limits<double>::infinity(), box[kBoxLanes + k] = -box[k];
+      double* box = leaf_boxes_.data() + l * 2 * kBoxLanes<N>;
+      for (int k = 0; k < N; ++k) box[k] = std::numeric_limits<double>::infinity(), box[kBoxLanes<N> + k] = -box[k];
       for (std::uint32_t r = leaves_[l].first; r < leaves_[l].first + leaves_[l].count; ++r)
         for (int k = 0; k < N; ++k) {
           const double x = points.point(original_[r])[k];
-          box[k] = std::min(box[k], x), box[kBoxLanes + k] = std::max(box[kBoxLanes + k], x);
+          box[k] = std::min(box[k], x), box[kBoxLanes<N> + k] = std::max(box[kBoxLanes<N> + k], x);
         }
     }
   }
@@ -89,12 +96,9 @@ class Index {
   // Row r (the rows are the leaves' points, leaf after leaf) is input point original()[r].
   const std::uint32_t* original() const { return original_; }
   const double* blocks() const { return blocks_.data(); }
-  // Leaf l's bounding box: N lower coordinates padded with zeros to kBoxLanes, then the N upper ones.
-  static constexpr int kBoxLanes = (N + kLanes - 1) / kLanes * kLanes;
-  const double* leaf_box(std::size_t l) const { return leaf_boxes_.data() + l * 2 * kBoxLanes; }
+  const double* leaf_box(std::size_t l) const { return leaf_boxes_.data() + l * 2 * kBoxLanes<N>; }
   const std::uint32_t* leaf_of_row() const { return leaf_of_row_.data(); }
   int depth() const { return depth_; }
-  std::uint32_t largest_leaf() const { return largest_leaf_; }
 
  private:
   using TreeNode = typename KdTree<N>::Node;
@@ -108,20 +112,17 @@ class Index {
       Leaf leaf;
       leaf.first = static_cast<std::uint32_t>(node->node_type.lr.left);
       leaf.count = static_cast<std::uint32_t>(node->node_type.lr.right - node->node_type.lr.left);
-      leaf.block = leaves_.empty() ? 0 : leaves_.back().block + (leaves_.back().count + kLanes - 1) / kLanes;
+      leaf.block = leaves_.empty() ? 0 : leaves_.back().block + (leaves_.back().count + Lanes - 1) / Lanes;
       leaf.node = self;
-      largest_leaf_ = std::max(largest_leaf_, leaf.count);
-      nodes_[self].leaf = static_cast<std::uint32_t>(leaves_.size());
+      nodes_[self].cut = -1 - static_cast<std::int32_t>(leaves_.size());
       leaves_.push_back(leaf);
       return self;
     }
     nodes_[self].cut = node->node_type.sub.divfeat;
     nodes_[self].low = node->node_type.sub.divlow;
     nodes_[self].high = node->node_type.sub.divhigh;
-    const std::uint32_t a = convert(node->child1, depth + 1);
-    const std::uint32_t b = convert(node->child2, depth + 1);
-    nodes_[self].child1 = static_cast<std::int32_t>(a);
-    nodes_[self].child2 = static_cast<std::int32_t>(b);
+    convert(node->child1, depth + 1);  // node self + 1
+    nodes_[self].child2 = static_cast<std::int32_t>(convert(node->child2, depth + 1));
     return self;
   }
 
@@ -132,20 +133,19 @@ class Index {
   std::vector<double> leaf_boxes_;
   std::vector<std::uint32_t> leaf_of_row_;
   int depth_ = 0;
-  std::uint32_t largest_leaf_ = 0;
 };
 
-// GCC's generic vectors: two SSE2 instructions each in the baseline build, one AVX instruction each in
-// the function built for AVX2 that this code is inlined into.
-typedef double Vec4 __attribute__((vector_size(kLanes * sizeof(double))));
+// GCC's generic vectors of four doubles: two SSE2 instructions each in the baseline build, one AVX
+// instruction each in the AVX2 and AVX-512 builds that this code is inlined into.
+typedef double Vec4 __attribute__((vector_size(4 * sizeof(double))));
 
 // The squared distance from point q (kBoxLanes coordinates, zero-padded) to the box `box` (Index::leaf_box),
 // summed in no particular order.
 template <int N>
 [[gnu::always_inline]] inline double box_distance(const double* q, const double* box) {
-  constexpr int kBox = Index<N>::kBoxLanes;
+  constexpr int kBox = kBoxLanes<N>;
   Vec4 sum = {};
-  for (int v = 0; v < kBox; v += kLanes) {
+  for (int v = 0; v < kBox; v += 4) {
     Vec4 lo, hi, qv;
     std::memcpy(&lo, box + v, sizeof lo);
     std::memcpy(&hi, box + kBox + v, sizeof hi);
@@ -166,146 +166,82 @@ struct StackEntry {
   double offset[N];
 };
 
-// Scratch for one thread: the subtrees left for later (each node on a path leaves at most one).
+// Scratch for one thread: the subtrees left for later (each node on a path leaves at most one, and the
+// descent writes one more entry above the top).
 template <int N>
 struct Scratch {
   std::vector<StackEntry<N>> stack;
 };
 
-// nearest[r - leaves[begin].first] = the row of a nearest other point of row r, for the rows of leaves
-// [begin, end) whose input point is one of the first `queries` (original()[r] < queries); the other rows
-// are not queried and their slots are left as they were. The lower bound of a subtree's squared distance
-// is the sum over axes of the squared distance to the cut planes that bound it (Arya and Mount's
-// incremental distance, as nanoflann's). Each row's answer is exact, so it does not depend on which rows
-// were queried before it (the warm start only tightens the radius sooner).
-template <int N>
-[[gnu::always_inline]] inline void nearest_rows(const Index<N>& index, std::size_t begin, std::size_t end,
-                                                std::uint32_t queries, std::uint32_t* nearest, Scratch<N>& s) {
-  const auto* nodes = index.nodes().data();
-  const auto* leaves = index.leaves().data();
-  const double* blocks = index.blocks();
-  const std::uint32_t base = leaves[begin].first;
-  StackEntry<N>* stack = s.stack.data();
-  const std::uint32_t* leaf_of_row = index.leaf_of_row();
-  const std::uint32_t* original = index.original();
-  std::uint32_t warm = static_cast<std::uint32_t>(begin);  // the leaf of the previous query's nearest point
-  for (std::size_t a = begin; a < end; ++a) {
-    const auto& own = leaves[a];
-    for (std::uint32_t r = own.first; r < own.first + own.count; ++r) {
-      if (original[r] >= queries) continue;
-      constexpr int kBox = Index<N>::kBoxLanes;
-      alignas(32) double q[kBox] = {};  // padded with zeros, as the leaves' boxes
-      const std::uint32_t j = r - own.first;
-      for (int k = 0; k < N; ++k) q[k] = blocks[(static_cast<std::size_t>(own.block) + j / kLanes) * N * kLanes + k * kLanes + j % kLanes];
-      double best = std::numeric_limits<double>::infinity();
-      std::uint32_t best_row = r;
-      double limit = best;
-      // The points of leaf l (but row r) that are nearer than best.
-      const auto scan = [&](std::uint32_t l) {
-        const auto& leaf = leaves[l];
-        const std::uint32_t count = (leaf.count + kLanes - 1) / kLanes;
-        const double* first_block = blocks + static_cast<std::size_t>(leaf.block) * N * kLanes;
-        for (std::uint32_t b = 0; b < count; ++b) {
-          const double* x = first_block + b * N * kLanes;
-          Vec4 v, acc;
-          for (int k = 0; k < N; ++k) {
-            std::memcpy(&v, x + k * kLanes, sizeof v);  // an unaligned load (no function returns a vector)
-            const Vec4 d = v - q[k];
-            acc = k == 0 ? d * d : acc + d * d;  // d * d, not 0 + d * d: the same bits either way
-          }
-          if (std::min(std::min(acc[0], acc[1]), std::min(acc[2], acc[3])) >= best) continue;
-          for (int lane = 0; lane < kLanes; ++lane) {
-            const std::uint32_t row = leaf.first + b * kLanes + static_cast<std::uint32_t>(lane);
-            if (acc[lane] < best && row != r) best = acc[lane], best_row = row, limit = best * kPruneMargin;
-          }
-        }
-      };
-      // The own leaf first, then the leaf where the previous query found its nearest point: a tight radius
-      // before the descent, which skips both.
-      scan(static_cast<std::uint32_t>(a));
-      const bool warm_start = warm != a && box_distance<N>(q, index.leaf_box(warm)) <= limit;
-      if (warm_start) scan(warm);
-      int top = 0;
-      std::int32_t node = 0;
-      double bound = 0.0;
-      double offset[N] = {};
-      for (;;) {
-        // Down the nearer child, leaving the farther for later, to a leaf.
-        while (nodes[node].child1 >= 0) {
-          const auto& nd = nodes[node];
-          const double value = q[nd.cut];
-          const double diff1 = value - nd.low, diff2 = value - nd.high;
-          std::int32_t first, other;
-          double cut;
-          if (diff1 + diff2 < 0) {
-            first = nd.child1, other = nd.child2, cut = diff2 * diff2;
-          } else {
-            first = nd.child2, other = nd.child1, cut = diff1 * diff1;
-          }
-          const double other_bound = bound + cut - offset[nd.cut];
-          if (other_bound <= limit) {
-            StackEntry<N>& e = stack[top++];
-            e.node = other;
-            e.bound = other_bound;
-            std::memcpy(e.offset, offset, sizeof offset);
-            e.offset[nd.cut] = cut;
-          }
-          node = first;
-        }
-        // A leaf's bounding box first: its squared distance (summed in any order) is at most any of its points'.
-        if (const std::uint32_t l = nodes[node].leaf; l != a && !(warm_start && l == warm) &&
-                                                      box_distance<N>(q, index.leaf_box(l)) <= limit)
-          scan(l);
-        for (;;) {  // the deepest subtree left that may still hold a nearer point
-          if (top == 0) goto done;
-          const StackEntry<N>& e = stack[--top];
-          if (e.bound <= limit) {
-            node = e.node;
-            bound = e.bound;
-            std::memcpy(offset, e.offset, sizeof offset);
-            break;
-          }
-        }
-      }
-    done:
-      nearest[r - base] = best_row;
-      warm = leaf_of_row[best_row];
-    }
-  }
-}
-
-template <int N>
-void nearest_rows_baseline(const Index<N>& index, std::size_t begin, std::size_t end, std::uint32_t queries,
-                           std::uint32_t* nearest, Scratch<N>& s) {
-  nearest_rows(index, begin, end, queries, nearest, s);
-}
-
-#if defined(__x86_64__)
-template <int N>
-[[gnu::target("avx2")]] void nearest_rows_avx2(const Index<N>& index, std::size_t begin, std::size_t end,
-                                               std::uint32_t queries, std::uint32_t* nearest, Scratch<N>& s) {
-  nearest_rows(index, begin, end, queries, nearest, s);
-}
-#endif
-
-template <int N>
-using NearestRows = void (*)(const Index<N>&, std::size_t, std::size_t, std::uint32_t, std::uint32_t*, Scratch<N>&);
-
-// The widest build this CPU runs (core/simd.hpp); both give the same rows' distances.
-template <int N>
-NearestRows<N> nearest_rows_kernel(Simd simd) {
-#if defined(__x86_64__)
-  if (simd == Simd::best && cpu_has_avx2()) return &nearest_rows_avx2<N>;
-#endif
-  (void)simd;
-  return &nearest_rows_baseline<N>;
-}
-
-template <int N>
-Scratch<N> make_scratch(const Index<N>& index) {
+template <int N, int Lanes>
+Scratch<N> make_scratch(const Index<N, Lanes>& index) {
   Scratch<N> s;
   s.stack.resize(static_cast<std::size_t>(index.depth()) + 1);
   return s;
+}
+
+// The three builds of the search (stats/nearest_other_kernel.inc), each in its own namespace.
+namespace baseline {
+inline constexpr int kLanes = 4;
+using Lanes = Vec4;
+// Every lane when any may be below `best` (each lane is checked again), else none.
+[[gnu::always_inline]] inline unsigned lanes_below(const Lanes& acc, double best) {
+  return std::min(std::min(acc[0], acc[1]), std::min(acc[2], acc[3])) < best ? 0xFu : 0u;
+}
+#include "dfvn/stats/nearest_other_kernel.inc"
+}  // namespace baseline
+
+#if defined(__x86_64__)
+#pragma GCC push_options
+#pragma GCC target("avx2")
+namespace avx2 {
+inline constexpr int kLanes = 4;
+using Lanes = Vec4;
+inline unsigned lanes_below(const Lanes& acc, double best) {
+  return static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(__m256d(acc), _mm256_set1_pd(best), _CMP_LT_OQ)));
+}
+#include "dfvn/stats/nearest_other_kernel.inc"
+}  // namespace avx2
+#pragma GCC pop_options
+
+#pragma GCC push_options
+#pragma GCC target("avx512f,avx512dq,avx512vl")
+namespace avx512 {
+inline constexpr int kLanes = 8;
+typedef double Lanes __attribute__((vector_size(8 * sizeof(double))));
+inline unsigned lanes_below(const Lanes& acc, double best) {
+  return _mm512_cmp_pd_mask(__m512d(acc), _mm512_set1_pd(best), _CMP_LT_OQ);
+}
+#include "dfvn/stats/nearest_other_kernel.inc"
+}  // namespace avx512
+#pragma GCC pop_options
+#endif
+
+template <int N, int Lanes>
+using NearestRows = void (*)(const Index<N, Lanes>&, std::size_t, std::size_t, std::uint32_t, std::uint32_t*, Scratch<N>&);
+
+// Leaves of up to 64 points (nanoflann's default is 10, kept by the other trees of stats/): with a block
+// of points to a vector instruction a leaf costs little more to scan than a node to pass, and fewer,
+// larger leaves mean fewer nodes per query. On the CNJ, Sobol and Poisson disk sets of the main job's
+// kind in 2D-8D (bench/nearest_leaf_sizes, bench/results.md), 64 took at most 1.12x the time of the
+// fastest of 16-128 in every dimension and build, and less than 32 in most.
+inline constexpr int kLeafSize = 64;
+
+// A build of the search.
+template <int N, int Lanes>
+struct Kernel {
+  NearestRows<N, Lanes> rows;
+};
+
+// Calls f(Kernel<N, Lanes>) with the widest build this CPU runs (`simd` best) or the baseline build
+// (core/simd.hpp); every build finds rows at the same distances, bit for bit.
+template <int N, class F>
+decltype(auto) with_kernel(Simd simd, F&& f) {
+#if defined(__x86_64__)
+  if (simd == Simd::best && cpu_has_avx512()) return f(Kernel<N, 8>{&avx512::nearest_rows<N>});
+  if (simd == Simd::best && cpu_has_avx2()) return f(Kernel<N, 4>{&avx2::nearest_rows<N>});
+#endif
+  return f(Kernel<N, 4>{&baseline::nearest_rows<N>});
 }
 
 }  // namespace dfvn::nearest_other

@@ -120,26 +120,68 @@ TEST(NearestNeighbour, SearchEqualsBruteForceOnTiesAndDegenerateSets) {
   }
 }
 
-// Both builds of the search (x86-64 baseline and AVX2) find rows at the same distances, bit for bit.
+// The nearest distance of every point by one build of the search, over a tree with leaves of up to `leaf`.
+template <int N, int Lanes>
+std::vector<double> search_distances(const PointSet& p, nearest_other::NearestRows<N, Lanes> rows, int leaf) {
+  const PointSetAdaptor<N> adaptor{p};
+  const KdTree<N> tree(N, adaptor, kd_tree_params(leaf));
+  const nearest_other::Index<N, Lanes> index(p, tree);
+  std::vector<std::uint32_t> nearest(p.size());
+  auto scratch = nearest_other::make_scratch(index);
+  rows(index, 0, index.leaves().size(), static_cast<std::uint32_t>(p.size()), nearest.data(), scratch);
+  const std::uint32_t* original = index.original();
+  std::vector<double> distances(p.size());
+  for (std::size_t r = 0; r < p.size(); ++r) {
+    EXPECT_NE(nearest[r], r);
+    distances[original[r]] = distance_between(p, original[r], original[nearest[r]]);
+  }
+  return distances;
+}
+
+// Every build of the search this CPU runs (x86-64 baseline; AVX2, four points to a block; AVX-512, eight),
+// over trees with leaves of up to 10 and kLeafSize points: the same distances as brute
+// force, bit for bit, on random points with duplicates and on a lattice with exact ties; on 20,000 random
+// points, the same distances as the baseline build. And with_kernel picks the widest build the CPU runs.
 TEST(NearestNeighbour, SearchBuildsAgree) {
-  if (!cpu_has_avx2()) GTEST_SKIP() << "this CPU runs only the baseline build";
   for (int dimension = 2; dimension <= 8; ++dimension) {
-    const PointSet p = uniform_random_points(dimension, 20000, Box{0.0, 1.0}, 40 + dimension, 1);
+    PointSet small = uniform_random_points(dimension, 2500, Box{0.0, 1.0}, 60 + dimension, 1);
+    for (int k = 0; k < 5; ++k) small.coordinates.insert(small.coordinates.end(), small.point(k * 13), small.point(k * 13) + dimension);
+    const int side = dimension >= 7 ? 3 : dimension == 6 ? 4 : dimension == 5 ? 5 : dimension == 4 ? 7 : dimension == 3 ? 12 : 40;
+    const LatticeSpec l{dimension, side, Protocol::unit};
+    PointSet lattice{dimension, Coordinates(l.point_count() * static_cast<std::size_t>(dimension), 0.0), Box{0.0, 1.0}};
+    for (std::uint64_t i = 0; i < l.point_count(); ++i) l.point(i, lattice.coordinates.data() + static_cast<std::size_t>(dimension) * i);
+    const PointSet large = uniform_random_points(dimension, 20000, Box{0.0, 1.0}, 40 + dimension, 1);
     dispatch_dimension(dimension, [&]<int N>() {
-      const PointSetAdaptor<N> adaptor{p};
-      const KdTree<N> tree(N, adaptor, kd_tree_params(nearest_other::kLeafSize));
-      const nearest_other::Index<N> index(p, tree);
-      std::vector<std::uint32_t> best(p.size()), baseline(p.size());
-      auto scratch = nearest_other::make_scratch(index);
-      nearest_other::nearest_rows_kernel<N>(Simd::best)(index, 0, index.leaves().size(), static_cast<std::uint32_t>(p.size()), best.data(), scratch);
-      nearest_other::nearest_rows_kernel<N>(Simd::baseline)(index, 0, index.leaves().size(), static_cast<std::uint32_t>(p.size()), baseline.data(), scratch);
-      EXPECT_NE(nearest_other::nearest_rows_kernel<N>(Simd::best), nearest_other::nearest_rows_kernel<N>(Simd::baseline));
-      for (std::size_t r = 0; r < p.size(); ++r) {
-        ASSERT_NE(best[r], r);
-        const std::uint32_t* original = index.original();
-        ASSERT_EQ(distance_between(p, original[r], original[best[r]]), distance_between(p, original[r], original[baseline[r]]))
-            << N << "D row " << r;
-      }
+      const auto every_build = [&](const PointSet& p, const std::vector<double>& expected, const std::string& what) {
+        for (const int leaf : {10, nearest_other::kLeafSize}) {
+          EXPECT_EQ((search_distances<N, 4>(p, &nearest_other::baseline::nearest_rows<N>, leaf)), expected) << N << "D " << what << " baseline, leaf " << leaf;
+#if defined(__x86_64__)
+          if (cpu_has_avx2()) {
+            EXPECT_EQ((search_distances<N, 4>(p, &nearest_other::avx2::nearest_rows<N>, leaf)), expected) << N << "D " << what << " AVX2, leaf " << leaf;
+          }
+#endif
+        }
+#if defined(__x86_64__)
+        if (cpu_has_avx512()) {
+          for (const int leaf : {10, nearest_other::kLeafSize})
+            EXPECT_EQ((search_distances<N, 8>(p, &nearest_other::avx512::nearest_rows<N>, leaf)), expected) << N << "D " << what << " AVX-512, leaf " << leaf;
+        }
+#endif
+      };
+      every_build(small, nearest_neighbour_distances_brute_force(small), "random points with duplicates");
+      every_build(lattice, nearest_neighbour_distances_brute_force(lattice), "lattice");
+      every_build(large, search_distances<N, 4>(large, &nearest_other::baseline::nearest_rows<N>, 64), "20,000 random points");
+      const int lanes = nearest_other::with_kernel<N>(Simd::best, []<int Lanes>(nearest_other::Kernel<N, Lanes>) { return Lanes; });
+      EXPECT_EQ(lanes, cpu_has_avx512() ? 8 : 4);
+      const bool baseline = nearest_other::with_kernel<N>(Simd::best, []<int Lanes>(nearest_other::Kernel<N, Lanes> k) {
+        if constexpr (Lanes == 4) return k.rows == &nearest_other::baseline::nearest_rows<N>;
+        return false;
+      });
+      EXPECT_EQ(baseline, !cpu_has_avx2() && !cpu_has_avx512());
+      nearest_other::with_kernel<N>(Simd::baseline, []<int Lanes>(nearest_other::Kernel<N, Lanes> k) {
+        if constexpr (Lanes == 4) EXPECT_EQ(k.rows, &nearest_other::baseline::nearest_rows<N>);
+        else ADD_FAILURE() << "Simd::baseline gave an 8-lane build";
+      });
     });
   }
 }
