@@ -32,7 +32,7 @@ double search(const PointSet& p, nearest_other::NearestRows<N, Lanes> rows, int 
   const nearest_other::Index<N, Lanes> index(p, tree);
   std::vector<std::uint32_t> nearest(p.size());
   auto scratch = nearest_other::make_scratch(index);
-  rows(index, 0, index.leaves().size(), static_cast<std::uint32_t>(p.size()), nearest.data(), scratch);
+  rows(index, 0, index.leaves().size(), static_cast<std::uint32_t>(p.size()), nearest.data(), scratch, nearest_other::Torus{});
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   distances.resize(p.size());
   for (std::size_t r = 0; r < p.size(); ++r)
@@ -76,12 +76,12 @@ int main(int argc, char** argv) try {
     std::printf("\n| --- | --- |");
     for (std::size_t k = 0; k < leaves.size(); ++k) std::printf(" --- |");
     std::printf("\n");
-    row("baseline", [&](int leaf, std::vector<double>& d) { return search<N, 4>(p, &nearest_other::baseline::nearest_rows<N>, leaf, d); });
+    row("baseline", [&](int leaf, std::vector<double>& d) { return search<N, 4>(p, &nearest_other::baseline::nearest_rows<N, false>, leaf, d); });
 #if defined(__x86_64__)
     if (cpu_has_avx2())
-      row("AVX2", [&](int leaf, std::vector<double>& d) { return search<N, 4>(p, &nearest_other::avx2::nearest_rows<N>, leaf, d); });
+      row("AVX2", [&](int leaf, std::vector<double>& d) { return search<N, 4>(p, &nearest_other::avx2::nearest_rows<N, false>, leaf, d); });
     if (cpu_has_avx512())
-      row("AVX-512", [&](int leaf, std::vector<double>& d) { return search<N, 8>(p, &nearest_other::avx512::nearest_rows<N>, leaf, d); });
+      row("AVX-512", [&](int leaf, std::vector<double>& d) { return search<N, 8>(p, &nearest_other::avx512::nearest_rows<N, false>, leaf, d); });
 #endif
   });
   return 0;

@@ -56,7 +56,7 @@ std::vector<double> nearest_neighbour_distances_nanoflann(const PointSet& points
       nearest_other::Scratch scratch = nearest_other::make_scratch(index);
       const std::size_t first = leaves[begin].first, last = leaves[end - 1].first + leaves[end - 1].count;
       std::vector<std::uint32_t> nearest(last - first);
-      kernel.rows(index, begin, end, limit, nearest.data(), scratch);
+      kernel.rows(index, begin, end, limit, nearest.data(), scratch, nearest_other::Torus{});
       for (std::size_t r = first; r < last; ++r)
         if (original[r] < limit) distances[original[r]] = distance_between(points, original[r], original[nearest[r - first]]);
     });

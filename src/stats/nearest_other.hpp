@@ -87,6 +87,22 @@ class Index {
           box[k] = std::min(box[k], x), box[kBoxLanes<N> + k] = std::max(box[kBoxLanes<N> + k], x);
         }
     }
+    // Every subtree's bounding box, children before parents (a child's index is above its parent's).
+    std::vector<double> boxes(nodes_.size() * 2 * N);
+    extents_.assign(nodes_.size() * 2, 0.0);
+    for (std::size_t i = nodes_.size(); i-- > 0;) {
+      double* box = boxes.data() + i * 2 * N;
+      const Node& nd = nodes_[i];
+      if (nd.cut < 0) {
+        const double* leaf = leaf_box(static_cast<std::size_t>(-1 - nd.cut));
+        for (int k = 0; k < N; ++k) box[k] = leaf[k], box[N + k] = leaf[kBoxLanes<N> + k];
+        continue;
+      }
+      const double* a = boxes.data() + (i + 1) * 2 * N;
+      const double* b = boxes.data() + static_cast<std::size_t>(nd.child2) * 2 * N;
+      for (int k = 0; k < N; ++k) box[k] = std::min(a[k], b[k]), box[N + k] = std::max(a[N + k], b[N + k]);
+      extents_[2 * i] = a[nd.cut], extents_[2 * i + 1] = b[N + nd.cut];
+    }
   }
   Index(const Index&) = delete;
   Index& operator=(const Index&) = delete;
@@ -97,6 +113,9 @@ class Index {
   const std::uint32_t* original() const { return original_; }
   const double* blocks() const { return blocks_.data(); }
   const double* leaf_box(std::size_t l) const { return leaf_boxes_.data() + l * 2 * kBoxLanes<N>; }
+  // Internal node i's first child's lowest and second child's highest coordinate on its cut axis: where the
+  // way round the torus to each child ends (the periodic search).
+  const double* extents() const { return extents_.data(); }
   const std::uint32_t* leaf_of_row() const { return leaf_of_row_.data(); }
   int depth() const { return depth_; }
 
@@ -131,6 +150,7 @@ class Index {
   std::vector<Leaf> leaves_;
   Coordinates blocks_;
   std::vector<double> leaf_boxes_;
+  std::vector<double> extents_;
   std::vector<std::uint32_t> leaf_of_row_;
   int depth_ = 0;
 };
@@ -139,10 +159,17 @@ class Index {
 // instruction each in the AVX2 and AVX-512 builds that this code is inlined into.
 typedef double Vec4 __attribute__((vector_size(4 * sizeof(double))));
 
+// The torus [lo, lo + side)^N of the periodic search; slack: how much shorter than computed each way
+// round through a face is taken to be (far more than that way's rounding; stats/periodic_neighbours.cpp).
+struct Torus {
+  double lo = 0.0, side = 0.0, slack = 0.0;
+};
+
 // The squared distance from point q (kBoxLanes coordinates, zero-padded) to the box `box` (Index::leaf_box),
-// summed in no particular order.
-template <int N>
-[[gnu::always_inline]] inline double box_distance(const double* q, const double* box) {
+// summed in no particular order. kPeriodic: on `torus`, each axis's gap the shorter of the way straight to
+// the box and the way round through the opposite face (less torus.slack).
+template <int N, bool kPeriodic = false>
+[[gnu::always_inline]] inline double box_distance(const double* q, const double* box, const Torus& torus = {}) {
   constexpr int kBox = kBoxLanes<N>;
   Vec4 sum = {};
   for (int v = 0; v < kBox; v += 4) {
@@ -152,6 +179,12 @@ template <int N>
     std::memcpy(&qv, q + v, sizeof qv);
     const Vec4 below = lo - qv, above = qv - hi;
     Vec4 gap = below > above ? below : above;
+    if constexpr (kPeriodic) {
+      // q below the box: round through the lower face to the box's top; above it: through the upper face.
+      const Vec4 round_below = (torus.side - (hi - qv)) - torus.slack, round_above = (torus.side - (qv - lo)) - torus.slack;
+      const Vec4 round = below > above ? round_below : round_above;
+      gap = round < gap ? round : gap;
+    }
     gap = gap > Vec4{} ? gap : Vec4{};
     sum = sum + gap * gap;
   }
@@ -184,9 +217,9 @@ Scratch<N> make_scratch(const Index<N, Lanes>& index) {
 namespace baseline {
 inline constexpr int kLanes = 4;
 using Lanes = Vec4;
-// Every lane when any may be below `best` (each lane is checked again), else none.
 [[gnu::always_inline]] inline unsigned lanes_below(const Lanes& acc, double best) {
-  return std::min(std::min(acc[0], acc[1]), std::min(acc[2], acc[3])) < best ? 0xFu : 0u;
+  return static_cast<unsigned>(acc[0] < best) | static_cast<unsigned>(acc[1] < best) << 1 |
+         static_cast<unsigned>(acc[2] < best) << 2 | static_cast<unsigned>(acc[3] < best) << 3;
 }
 #include "dfvn/stats/nearest_other_kernel.inc"
 }  // namespace baseline
@@ -218,7 +251,8 @@ inline unsigned lanes_below(const Lanes& acc, double best) {
 #endif
 
 template <int N, int Lanes>
-using NearestRows = void (*)(const Index<N, Lanes>&, std::size_t, std::size_t, std::uint32_t, std::uint32_t*, Scratch<N>&);
+using NearestRows = void (*)(const Index<N, Lanes>&, std::size_t, std::size_t, std::uint32_t, std::uint32_t*, Scratch<N>&,
+                             const Torus&);
 
 // Leaves of up to 64 points (nanoflann's default is 10, kept by the other trees of stats/): with a block
 // of points to a vector instruction a leaf costs little more to scan than a node to pass, and fewer,
@@ -234,14 +268,15 @@ struct Kernel {
 };
 
 // Calls f(Kernel<N, Lanes>) with the widest build this CPU runs (`simd` best) or the baseline build
-// (core/simd.hpp); every build finds rows at the same distances, bit for bit.
-template <int N, class F>
+// (core/simd.hpp); every build finds rows at the same distances, bit for bit. kPeriodic: the search on a
+// torus (its rows take the Torus; the Euclidean search ignores it).
+template <int N, bool kPeriodic = false, class F>
 decltype(auto) with_kernel(Simd simd, F&& f) {
 #if defined(__x86_64__)
-  if (simd == Simd::best && cpu_has_avx512()) return f(Kernel<N, 8>{&avx512::nearest_rows<N>});
-  if (simd == Simd::best && cpu_has_avx2()) return f(Kernel<N, 4>{&avx2::nearest_rows<N>});
+  if (simd == Simd::best && cpu_has_avx512()) return f(Kernel<N, 8>{&avx512::nearest_rows<N, kPeriodic>});
+  if (simd == Simd::best && cpu_has_avx2()) return f(Kernel<N, 4>{&avx2::nearest_rows<N, kPeriodic>});
 #endif
-  return f(Kernel<N, 4>{&baseline::nearest_rows<N>});
+  return f(Kernel<N, 4>{&baseline::nearest_rows<N, kPeriodic>});
 }
 
 }  // namespace dfvn::nearest_other

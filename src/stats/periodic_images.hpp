@@ -1,5 +1,5 @@
-// The images of a point on the torus [lo, lo + side)^N that a search with a given reach must visit.
-// Private (not installed): shared by the periodic nearest-neighbour search and the periodic RDF.
+// The images of a point on the torus [lo, lo + side)^N that a search with a given reach must visit (the
+// periodic RDF), and the minimum image of a difference (every periodic distance). Private (not installed).
 #pragma once
 
 #include <cmath>

@@ -10,9 +10,11 @@
 
 #include "dfvn/core/dimension.hpp"
 #include "dfvn/core/parallel.hpp"
+#include "dfvn/core/simd.hpp"
 #include "dfvn/stats/distance_scale.hpp"
 #include "dfvn/stats/kd_tree.hpp"
 #include "dfvn/stats/neighbour_loop.hpp"
+#include "dfvn/stats/nearest_other.hpp"
 #include "dfvn/stats/periodic_images.hpp"
 
 namespace dfvn {
@@ -58,34 +60,37 @@ std::vector<double> periodic_distances_1d(const PointSet& points, std::size_t qu
   return distances;
 }
 
+// stats/nearest_other.hpp's search on the torus: one walk of nanoflann's tree per point, a subtree as near
+// as the way round through the opposite face allows, made a leaf at a time in the tree's order and
+// scattered back to the input's indices; each pair's distance is periodic_distance_between's.
 template <int N>
 std::vector<double> periodic_distances_kd_tree(const PointSet& points, std::size_t queries, int threads,
                                                const FractionProgress& progress) {
-  const LeafOrderedTree<N> ordered(points);
-  const PointSet& rows = ordered.sorted();
-  const auto& tree = ordered.tree();
+  if (points.size() > std::numeric_limits<std::uint32_t>::max())  // the tree's rows are 32-bit
+    throw std::invalid_argument("the periodic nearest-neighbour search takes at most 2^32 - 1 points");
+  const PointSetAdaptor<N> adaptor{points};
+  const KdTree<N> tree(N, adaptor, kd_tree_params(nearest_other::kLeafSize));  // built by its constructor
   const double lo = points.domain.lo, side = points.domain.side;
-  return neighbour_loop::for_every_point(ordered.original(), queries, threads, progress, [&](std::size_t self) {
-    double best = std::numeric_limits<double>::infinity();
-    // The nearest point other than i to a query position (the point or one of its images); its
-    // minimum-image distance decides, so that every image agrees with the brute force to the bit.
-    const auto query = [&](const double* y) {
-      std::uint32_t index[2];
-      double dist2[2];
-      nanoflann::KNNResultSet<double, std::uint32_t> result(2);
-      result.init(index, dist2);
-      tree.findNeighbors(result, y, nanoflann::SearchParams());
-      for (std::size_t r = 0; r < result.size(); ++r)
-        if (index[r] != self) {
-          best = std::min(best, periodic_distance_between(rows, self, index[r]));
-          break;
-        }
-    };
-    const double* x = rows.point(self);
-    query(x);
-    for_each_periodic_image<N>(x, lo, side, [&] { return best; }, query);
-    return best;
+  // The ways round are computed from lo, lo + side and the coordinates: a few units in the last place of
+  // the largest of them. 2^-40 of their size is far more (and far below any spacing that matters).
+  const nearest_other::Torus torus{lo, side, (std::abs(lo) + std::abs(lo + side) + side) * 0x1p-40};
+  std::vector<double> distances(queries);
+  nearest_other::with_kernel<N, true>(Simd::best, [&]<int Lanes>(nearest_other::Kernel<N, Lanes> kernel) {
+    const nearest_other::Index<N, Lanes> index(points, tree);
+    const std::uint32_t* original = index.original();
+    const auto& leaves = index.leaves();
+    const auto limit = static_cast<std::uint32_t>(queries);
+    neighbour_loop::for_every_chunk(leaves.size(), threads, progress, [&](std::size_t begin, std::size_t end) {
+      nearest_other::Scratch scratch = nearest_other::make_scratch(index);
+      const std::size_t first = leaves[begin].first, last = leaves[end - 1].first + leaves[end - 1].count;
+      std::vector<std::uint32_t> nearest(last - first);
+      kernel.rows(index, begin, end, limit, nearest.data(), scratch, torus);
+      for (std::size_t r = first; r < last; ++r)
+        if (original[r] < limit)
+          distances[original[r]] = periodic_distance_between(points, original[r], original[nearest[r - first]]);
+    });
   });
+  return distances;
 }
 
 }  // namespace

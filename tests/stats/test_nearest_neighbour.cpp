@@ -128,7 +128,7 @@ std::vector<double> search_distances(const PointSet& p, nearest_other::NearestRo
   const nearest_other::Index<N, Lanes> index(p, tree);
   std::vector<std::uint32_t> nearest(p.size());
   auto scratch = nearest_other::make_scratch(index);
-  rows(index, 0, index.leaves().size(), static_cast<std::uint32_t>(p.size()), nearest.data(), scratch);
+  rows(index, 0, index.leaves().size(), static_cast<std::uint32_t>(p.size()), nearest.data(), scratch, nearest_other::Torus{});
   const std::uint32_t* original = index.original();
   std::vector<double> distances(p.size());
   for (std::size_t r = 0; r < p.size(); ++r) {
@@ -154,32 +154,32 @@ TEST(NearestNeighbour, SearchBuildsAgree) {
     dispatch_dimension(dimension, [&]<int N>() {
       const auto every_build = [&](const PointSet& p, const std::vector<double>& expected, const std::string& what) {
         for (const int leaf : {10, nearest_other::kLeafSize}) {
-          EXPECT_EQ((search_distances<N, 4>(p, &nearest_other::baseline::nearest_rows<N>, leaf)), expected) << N << "D " << what << " baseline, leaf " << leaf;
+          EXPECT_EQ((search_distances<N, 4>(p, &nearest_other::baseline::nearest_rows<N, false>, leaf)), expected) << N << "D " << what << " baseline, leaf " << leaf;
 #if defined(__x86_64__)
           if (cpu_has_avx2()) {
-            EXPECT_EQ((search_distances<N, 4>(p, &nearest_other::avx2::nearest_rows<N>, leaf)), expected) << N << "D " << what << " AVX2, leaf " << leaf;
+            EXPECT_EQ((search_distances<N, 4>(p, &nearest_other::avx2::nearest_rows<N, false>, leaf)), expected) << N << "D " << what << " AVX2, leaf " << leaf;
           }
 #endif
         }
 #if defined(__x86_64__)
         if (cpu_has_avx512()) {
           for (const int leaf : {10, nearest_other::kLeafSize})
-            EXPECT_EQ((search_distances<N, 8>(p, &nearest_other::avx512::nearest_rows<N>, leaf)), expected) << N << "D " << what << " AVX-512, leaf " << leaf;
+            EXPECT_EQ((search_distances<N, 8>(p, &nearest_other::avx512::nearest_rows<N, false>, leaf)), expected) << N << "D " << what << " AVX-512, leaf " << leaf;
         }
 #endif
       };
       every_build(small, nearest_neighbour_distances_brute_force(small), "random points with duplicates");
       every_build(lattice, nearest_neighbour_distances_brute_force(lattice), "lattice");
-      every_build(large, search_distances<N, 4>(large, &nearest_other::baseline::nearest_rows<N>, 64), "20,000 random points");
+      every_build(large, search_distances<N, 4>(large, &nearest_other::baseline::nearest_rows<N, false>, 64), "20,000 random points");
       const int lanes = nearest_other::with_kernel<N>(Simd::best, []<int Lanes>(nearest_other::Kernel<N, Lanes>) { return Lanes; });
       EXPECT_EQ(lanes, cpu_has_avx512() ? 8 : 4);
       const bool baseline = nearest_other::with_kernel<N>(Simd::best, []<int Lanes>(nearest_other::Kernel<N, Lanes> k) {
-        if constexpr (Lanes == 4) return k.rows == &nearest_other::baseline::nearest_rows<N>;
+        if constexpr (Lanes == 4) return k.rows == &nearest_other::baseline::nearest_rows<N, false>;
         return false;
       });
       EXPECT_EQ(baseline, !cpu_has_avx2() && !cpu_has_avx512());
       nearest_other::with_kernel<N>(Simd::baseline, []<int Lanes>(nearest_other::Kernel<N, Lanes> k) {
-        if constexpr (Lanes == 4) EXPECT_EQ(k.rows, &nearest_other::baseline::nearest_rows<N>);
+        if constexpr (Lanes == 4) EXPECT_EQ(k.rows, (&nearest_other::baseline::nearest_rows<N, false>));
         else ADD_FAILURE() << "Simd::baseline gave an 8-lane build";
       });
     });

@@ -6,10 +6,14 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
+#include "dfvn/core/dimension.hpp"
+#include "dfvn/core/simd.hpp"
 #include "dfvn/sampling/jitter.hpp"
 #include "dfvn/sampling/lattice.hpp"
 #include "dfvn/stats/nearest_neighbour.hpp"
+#include "dfvn/stats/nearest_other.hpp"
 #include "dfvn/stats/radial_distribution.hpp"
 
 namespace dfvn {
@@ -34,6 +38,64 @@ TEST(PeriodicNeighbours, KdTreeEqualsBruteForce) {
     EXPECT_EQ(tree[0], 0.0);             // a duplicate
     EXPECT_EQ(tree[p.size() - 1], 0.0);  // the two faces meet
   }
+}
+
+// Every build of the periodic search this CPU runs (baseline, AVX2, AVX-512: stats/nearest_other.hpp), over
+// trees with leaves of up to 10 and 64 points, finds for every point a row at brute force's minimum-image
+// distance, to the bit: 2D-8D random points with duplicates, a point on each face of an axis and points a
+// hair inside both faces, and a lattice with exact ties across the faces; in a box that does not start at 0
+// and in one far from the origin (where the ways round through a face are computed from large numbers).
+template <int N, int Lanes>
+std::vector<double> periodic_search(const PointSet& p, nearest_other::NearestRows<N, Lanes> rows, int leaf) {
+  const PointSetAdaptor<N> adaptor{p};
+  const KdTree<N> tree(N, adaptor, kd_tree_params(leaf));
+  const nearest_other::Index<N, Lanes> index(p, tree);
+  std::vector<std::uint32_t> nearest(p.size());
+  auto scratch = nearest_other::make_scratch(index);
+  const double lo = p.domain.lo, side = p.domain.side;
+  const nearest_other::Torus torus{lo, side, (std::abs(lo) + std::abs(lo + side) + side) * 0x1p-40};
+  rows(index, 0, index.leaves().size(), static_cast<std::uint32_t>(p.size()), nearest.data(), scratch, torus);
+  std::vector<double> distances(p.size());
+  for (std::size_t r = 0; r < p.size(); ++r) {
+    EXPECT_NE(nearest[r], r);
+    distances[index.original()[r]] = periodic_distance_between(p, index.original()[r], index.original()[nearest[r]]);
+  }
+  return distances;
+}
+
+TEST(PeriodicNeighbours, EveryBuildEqualsBruteForce) {
+  for (const Box box : {Box{-2.0, 3.0}, Box{1000.25, 0.75}})
+    for (int dimension = 2; dimension <= 8; ++dimension) {
+      PointSet random = uniform_random_points(dimension, 2000, box, 90 + dimension, 1);
+      for (int k = 0; k < 3; ++k) random.coordinates.insert(random.coordinates.end(), random.point(k * 5), random.point(k * 5) + dimension);
+      for (const double x0 : {box.lo, box.lo + box.side, std::nextafter(box.lo, 1e9), std::nextafter(box.lo + box.side, -1e9)}) {
+        std::vector<double> x(dimension, box.lo + 0.5 * box.side);
+        x[0] = x0;
+        random.coordinates.insert(random.coordinates.end(), x.begin(), x.end());
+      }
+      const int side = dimension >= 7 ? 3 : dimension == 6 ? 4 : dimension == 5 ? 5 : dimension == 4 ? 7 : dimension == 3 ? 12 : 40;
+      const LatticeSpec l{dimension, side, Protocol::unit};
+      PointSet lattice{dimension, Coordinates(l.point_count() * static_cast<std::size_t>(dimension)), box};
+      for (std::uint64_t i = 0; i < l.point_count(); ++i) l.point(i, lattice.coordinates.data() + static_cast<std::size_t>(dimension) * i);
+      for (double& x : lattice.coordinates) x = box.lo + box.side * x;
+      dispatch_dimension(dimension, [&]<int N>() {
+        for (const PointSet* p : {&random, &lattice}) {
+          const std::vector<double> brute = periodic_nearest_neighbour_distances_brute_force(*p);
+          const std::string what = std::to_string(N) + "D " + (p == &random ? "random" : "lattice") + " in [" + std::to_string(box.lo) + ", +" + std::to_string(box.side) + "]";
+          for (const int leaf : {10, nearest_other::kLeafSize}) {
+            EXPECT_EQ((periodic_search<N, 4>(*p, &nearest_other::baseline::nearest_rows<N, true>, leaf)), brute) << what << " baseline, leaf " << leaf;
+#if defined(__x86_64__)
+            if (cpu_has_avx2()) {
+              EXPECT_EQ((periodic_search<N, 4>(*p, &nearest_other::avx2::nearest_rows<N, true>, leaf)), brute) << what << " AVX2, leaf " << leaf;
+            }
+            if (cpu_has_avx512()) {
+              EXPECT_EQ((periodic_search<N, 8>(*p, &nearest_other::avx512::nearest_rows<N, true>, leaf)), brute) << what << " AVX-512, leaf " << leaf;
+            }
+#endif
+          }
+        }
+      });
+    }
 }
 
 // Two points near opposite faces are neighbours across them; the Euclidean distance does not see it.
