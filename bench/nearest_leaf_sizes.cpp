@@ -27,16 +27,10 @@ using namespace dfvn;
 template <int N, int Lanes>
 double search(const PointSet& p, nearest_other::NearestRows<N, Lanes> rows, int leaf, std::vector<double>& distances) {
   const auto start = std::chrono::steady_clock::now();
-  const PointSetAdaptor<N> adaptor{p};
-  const KdTree<N> tree(N, adaptor, kd_tree_params(leaf));
-  const nearest_other::Index<N, Lanes> index(p, tree);
-  std::vector<std::uint32_t> nearest(p.size());
-  auto scratch = nearest_other::make_scratch(index);
-  rows(index, 0, index.leaves().size(), static_cast<std::uint32_t>(p.size()), nearest.data(), scratch, nearest_other::Torus{});
+  const std::vector<std::uint32_t> nearest = nearest_other::nearest_of_every_point<N, Lanes>(p, rows, leaf);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   distances.resize(p.size());
-  for (std::size_t r = 0; r < p.size(); ++r)
-    distances[index.original()[r]] = distance_between(p, index.original()[r], index.original()[nearest[r]]);
+  for (std::size_t i = 0; i < p.size(); ++i) distances[i] = distance_between(p, i, nearest[i]);
   return seconds;
 }
 

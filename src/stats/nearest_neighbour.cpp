@@ -41,27 +41,8 @@ namespace {
 template <int N>
 std::vector<double> nearest_neighbour_distances_nanoflann(const PointSet& points, std::size_t queries, int threads,
                                                           const FractionProgress& progress) {
-  if (points.size() > std::numeric_limits<std::uint32_t>::max())  // the tree's rows are 32-bit
-    throw std::invalid_argument("the nanoflann nearest-neighbour search takes at most 2^32 - 1 points");
-  const PointSetAdaptor<N> adaptor{points};
-  const KdTree<N> tree(N, adaptor, kd_tree_params(nearest_other::kLeafSize));  // built by its constructor
-  std::vector<double> distances(queries);
-  nearest_other::with_kernel<N>(Simd::best, [&]<int Lanes>(nearest_other::Kernel<N, Lanes> kernel) {
-    const nearest_other::Index<N, Lanes> index(points, tree);
-    const std::uint32_t* original = index.original();
-    const auto& leaves = index.leaves();
-    const auto limit = static_cast<std::uint32_t>(queries);
-    // Chunks of leaves; progress counts leaves done over leaves.
-    neighbour_loop::for_every_chunk(leaves.size(), threads, progress, [&](std::size_t begin, std::size_t end) {
-      nearest_other::Scratch scratch = nearest_other::make_scratch(index);
-      const std::size_t first = leaves[begin].first, last = leaves[end - 1].first + leaves[end - 1].count;
-      std::vector<std::uint32_t> nearest(last - first);
-      kernel.rows(index, begin, end, limit, nearest.data(), scratch, nearest_other::Torus{});
-      for (std::size_t r = first; r < last; ++r)
-        if (original[r] < limit) distances[original[r]] = distance_between(points, original[r], original[nearest[r - first]]);
-    });
-  });
-  return distances;
+  return nearest_other::nearest_distances<N, false>(points, queries, threads, progress, nearest_other::Torus{},
+                                                    [&](std::size_t i, std::size_t j) { return distance_between(points, i, j); });
 }
 
 }  // namespace

@@ -15,12 +15,15 @@
 // relative margin (1e-9) far above the bound's rounding (a few units in the last place), so no closer
 // point is ever pruned.
 //
-// Use: build the tree with leaves of up to kLeafSize points; with_kernel<N>(simd, f) calls
-// f(Kernel<N, Lanes>) with the build this CPU runs; in f, build an Index<N, Lanes> over the tree and call
-// kernel.rows leaf range by leaf range (each thread with its own make_scratch).
+// Use: nearest_distances<N, kPeriodic>(points, ...) does it all (the Euclidean and the periodic statistics
+// call it). Inside: a tree with leaves of up to kLeafSize points; with_kernel<N, kPeriodic>(simd, f) calls
+// f(Kernel<N, Lanes>) with the build this CPU runs; in f, an Index<N, Lanes> over the tree and kernel.rows
+// called leaf range by leaf range (each thread with its own make_scratch). nearest_of_every_point runs one
+// given build (tests, benchmarks).
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -32,8 +35,10 @@
 #endif
 
 #include "dfvn/core/point_set.hpp"
+#include "dfvn/core/progress.hpp"
 #include "dfvn/core/simd.hpp"
 #include "dfvn/stats/kd_tree.hpp"
+#include "dfvn/stats/neighbour_loop.hpp"
 
 namespace dfvn::nearest_other {
 
@@ -165,6 +170,13 @@ struct Torus {
   double lo = 0.0, side = 0.0, slack = 0.0;
 };
 
+// The torus [lo, lo + side)^N with its slack: the ways round are computed from lo, lo + side and the
+// coordinates, to a few units in the last place of the largest of them; 2^-40 of their size is far more
+// (and far below any spacing that matters).
+inline Torus periodic_torus(double lo, double side) {
+  return Torus{lo, side, (std::abs(lo) + std::abs(lo + side) + side) * 0x1p-40};
+}
+
 // The squared distance from point q (kBoxLanes coordinates, zero-padded) to the box `box` (Index::leaf_box),
 // summed in no particular order. kPeriodic: on `torus`, each axis's gap the shorter of the way straight to
 // the box and the way round through the opposite face (less torus.slack).
@@ -277,6 +289,49 @@ decltype(auto) with_kernel(Simd simd, F&& f) {
   if (simd == Simd::best && cpu_has_avx2()) return f(Kernel<N, 4>{&avx2::nearest_rows<N, kPeriodic>});
 #endif
   return f(Kernel<N, 4>{&baseline::nearest_rows<N, kPeriodic>});
+}
+
+// distances[i] = distance(i, j) for each of the first `queries` points i and a nearest other point j (on
+// `torus` if kPeriodic: `distance` then measures on it), with the widest build this CPU runs, in parallel
+// over chunks of leaves (the same result for any thread count); progress counts leaves done.
+template <int N, bool kPeriodic, class Distance>
+std::vector<double> nearest_distances(const PointSet& points, std::size_t queries, int threads, const FractionProgress& progress,
+                                      const Torus& torus, const Distance& distance) {
+  if (points.size() > std::numeric_limits<std::uint32_t>::max())  // the tree's rows are 32-bit
+    throw std::invalid_argument("the nearest-neighbour search takes at most 2^32 - 1 points");
+  const PointSetAdaptor<N> adaptor{points};
+  const KdTree<N> tree(N, adaptor, kd_tree_params(kLeafSize));  // built by its constructor
+  std::vector<double> distances(queries);
+  with_kernel<N, kPeriodic>(Simd::best, [&]<int Lanes>(Kernel<N, Lanes> kernel) {
+    const Index<N, Lanes> index(points, tree);
+    const std::uint32_t* original = index.original();
+    const auto& leaves = index.leaves();
+    const auto limit = static_cast<std::uint32_t>(queries);
+    neighbour_loop::for_every_chunk(leaves.size(), threads, progress, [&](std::size_t begin, std::size_t end) {
+      Scratch<N> scratch = make_scratch(index);
+      const std::size_t first = leaves[begin].first, last = leaves[end - 1].first + leaves[end - 1].count;
+      std::vector<std::uint32_t> nearest(last - first);
+      kernel.rows(index, begin, end, limit, nearest.data(), scratch, torus);
+      for (std::size_t r = first; r < last; ++r)
+        if (original[r] < limit) distances[original[r]] = distance(original[r], original[nearest[r - first]]);
+    });
+  });
+  return distances;
+}
+
+// For tests and benchmarks: the input index of a nearest other point of every point, found by the one build
+// `rows` over a tree with leaves of up to `leaf` points, on one thread.
+template <int N, int Lanes>
+std::vector<std::uint32_t> nearest_of_every_point(const PointSet& points, NearestRows<N, Lanes> rows, int leaf,
+                                                  const Torus& torus = {}) {
+  const PointSetAdaptor<N> adaptor{points};
+  const KdTree<N> tree(N, adaptor, kd_tree_params(leaf));
+  const Index<N, Lanes> index(points, tree);
+  std::vector<std::uint32_t> nearest(points.size()), result(points.size());
+  Scratch<N> scratch = make_scratch(index);
+  rows(index, 0, index.leaves().size(), static_cast<std::uint32_t>(points.size()), nearest.data(), scratch, torus);
+  for (std::size_t r = 0; r < points.size(); ++r) result[index.original()[r]] = index.original()[nearest[r]];
+  return result;
 }
 
 }  // namespace dfvn::nearest_other

@@ -66,31 +66,9 @@ std::vector<double> periodic_distances_1d(const PointSet& points, std::size_t qu
 template <int N>
 std::vector<double> periodic_distances_kd_tree(const PointSet& points, std::size_t queries, int threads,
                                                const FractionProgress& progress) {
-  if (points.size() > std::numeric_limits<std::uint32_t>::max())  // the tree's rows are 32-bit
-    throw std::invalid_argument("the periodic nearest-neighbour search takes at most 2^32 - 1 points");
-  const PointSetAdaptor<N> adaptor{points};
-  const KdTree<N> tree(N, adaptor, kd_tree_params(nearest_other::kLeafSize));  // built by its constructor
   const double lo = points.domain.lo, side = points.domain.side;
-  // The ways round are computed from lo, lo + side and the coordinates: a few units in the last place of
-  // the largest of them. 2^-40 of their size is far more (and far below any spacing that matters).
-  const nearest_other::Torus torus{lo, side, (std::abs(lo) + std::abs(lo + side) + side) * 0x1p-40};
-  std::vector<double> distances(queries);
-  nearest_other::with_kernel<N, true>(Simd::best, [&]<int Lanes>(nearest_other::Kernel<N, Lanes> kernel) {
-    const nearest_other::Index<N, Lanes> index(points, tree);
-    const std::uint32_t* original = index.original();
-    const auto& leaves = index.leaves();
-    const auto limit = static_cast<std::uint32_t>(queries);
-    neighbour_loop::for_every_chunk(leaves.size(), threads, progress, [&](std::size_t begin, std::size_t end) {
-      nearest_other::Scratch scratch = nearest_other::make_scratch(index);
-      const std::size_t first = leaves[begin].first, last = leaves[end - 1].first + leaves[end - 1].count;
-      std::vector<std::uint32_t> nearest(last - first);
-      kernel.rows(index, begin, end, limit, nearest.data(), scratch, torus);
-      for (std::size_t r = first; r < last; ++r)
-        if (original[r] < limit)
-          distances[original[r]] = periodic_distance_between(points, original[r], original[nearest[r - first]]);
-    });
-  });
-  return distances;
+  return nearest_other::nearest_distances<N, true>(points, queries, threads, progress, nearest_other::periodic_torus(lo, side),
+                                                   [&](std::size_t i, std::size_t j) { return periodic_distance_between(points, i, j); });
 }
 
 }  // namespace

@@ -123,17 +123,11 @@ TEST(NearestNeighbour, SearchEqualsBruteForceOnTiesAndDegenerateSets) {
 // The nearest distance of every point by one build of the search, over a tree with leaves of up to `leaf`.
 template <int N, int Lanes>
 std::vector<double> search_distances(const PointSet& p, nearest_other::NearestRows<N, Lanes> rows, int leaf) {
-  const PointSetAdaptor<N> adaptor{p};
-  const KdTree<N> tree(N, adaptor, kd_tree_params(leaf));
-  const nearest_other::Index<N, Lanes> index(p, tree);
-  std::vector<std::uint32_t> nearest(p.size());
-  auto scratch = nearest_other::make_scratch(index);
-  rows(index, 0, index.leaves().size(), static_cast<std::uint32_t>(p.size()), nearest.data(), scratch, nearest_other::Torus{});
-  const std::uint32_t* original = index.original();
+  const std::vector<std::uint32_t> nearest = nearest_other::nearest_of_every_point<N, Lanes>(p, rows, leaf);
   std::vector<double> distances(p.size());
-  for (std::size_t r = 0; r < p.size(); ++r) {
-    EXPECT_NE(nearest[r], r);
-    distances[original[r]] = distance_between(p, original[r], original[nearest[r]]);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    EXPECT_NE(nearest[i], i);
+    distances[i] = distance_between(p, i, nearest[i]);
   }
   return distances;
 }

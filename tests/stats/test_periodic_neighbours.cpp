@@ -47,18 +47,12 @@ TEST(PeriodicNeighbours, KdTreeEqualsBruteForce) {
 // and in one far from the origin (where the ways round through a face are computed from large numbers).
 template <int N, int Lanes>
 std::vector<double> periodic_search(const PointSet& p, nearest_other::NearestRows<N, Lanes> rows, int leaf) {
-  const PointSetAdaptor<N> adaptor{p};
-  const KdTree<N> tree(N, adaptor, kd_tree_params(leaf));
-  const nearest_other::Index<N, Lanes> index(p, tree);
-  std::vector<std::uint32_t> nearest(p.size());
-  auto scratch = nearest_other::make_scratch(index);
-  const double lo = p.domain.lo, side = p.domain.side;
-  const nearest_other::Torus torus{lo, side, (std::abs(lo) + std::abs(lo + side) + side) * 0x1p-40};
-  rows(index, 0, index.leaves().size(), static_cast<std::uint32_t>(p.size()), nearest.data(), scratch, torus);
+  const std::vector<std::uint32_t> nearest =
+      nearest_other::nearest_of_every_point<N, Lanes>(p, rows, leaf, nearest_other::periodic_torus(p.domain.lo, p.domain.side));
   std::vector<double> distances(p.size());
-  for (std::size_t r = 0; r < p.size(); ++r) {
-    EXPECT_NE(nearest[r], r);
-    distances[index.original()[r]] = periodic_distance_between(p, index.original()[r], index.original()[nearest[r]]);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    EXPECT_NE(nearest[i], i);
+    distances[i] = periodic_distance_between(p, i, nearest[i]);
   }
   return distances;
 }
