@@ -80,6 +80,6 @@ int main(int argc, char** argv) try {
   });
   return 0;
 } catch (const std::exception& e) {
-  std::fprintf(stderr, "nearest_leaf_sizes: %s\n", e.what());
+  std::fprintf(stderr, "nearest_leaf_sizes: %s: %s\n", argc > 1 ? argv[1] : "", e.what());
   return 1;
 }
