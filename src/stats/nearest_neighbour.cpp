@@ -4,17 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
 #include "dfvn/core/dimension.hpp"
-#include "dfvn/core/parallel.hpp"
 #include "dfvn/core/quantile.hpp"
-#include "dfvn/core/simd.hpp"
 #include "dfvn/stats/distance_scale.hpp"
-#include "dfvn/stats/kd_tree.hpp"
 #include "dfvn/stats/nearest_other.hpp"
 #include "dfvn/stats/neighbour_loop.hpp"
 

@@ -2,17 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numeric>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "dfvn/core/dimension.hpp"
-#include "dfvn/core/parallel.hpp"
-#include "dfvn/core/simd.hpp"
 #include "dfvn/stats/distance_scale.hpp"
-#include "dfvn/stats/kd_tree.hpp"
 #include "dfvn/stats/neighbour_loop.hpp"
 #include "dfvn/stats/nearest_other.hpp"
 #include "dfvn/stats/periodic_images.hpp"
