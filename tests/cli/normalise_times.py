@@ -6,6 +6,9 @@ between two runs of the same command (the reproductions have no --no-timing):
   one (the plain text aligns its columns to the numbers' widths), so the words and the rows are compared (table1.csv and table2.csv hold their numbers, compared above);
   a verdict on a claim about time ("... and in time (# s vs # s): holds at #") depends on the machine's load, so it is '<verdict>';
 - the other reproductions' Markdown and plain text: 'N s' as '<time>';
+- in both, the machine the times were measured on ("on <CPU model> (N hardware threads)", "of <CPU model> (...)",
+  from core/machine.cpp) as '<machine>': the CPU's name is the host's, not the program's (an Intel host failed
+  the comparison recorded on an AMD one); test_cli_reference.sh checks this with another CPU name injected;
 - everything else (PNG, NPY, the other text) byte for byte.
 Usage: normalise_times.py PATH (relative to the folder the commands ran in)."""
 import re
@@ -13,6 +16,24 @@ import sys
 
 TIME_COLUMN = re.compile(r"^(seconds.*|megapixels_per_second)$")
 NUMBER = re.compile(r"\d+(\.\d+)?(e[-+]?\d+)?")
+THREADS = re.compile(r" \((\d+|#) hardware threads\)")
+MACHINE_LEAD = re.compile(r"\b(on|of) ")
+
+
+def blank_machine(text):
+    """Each "<lead> <model> (N hardware threads)" as "<lead> <machine> (N hardware threads)", where <lead> is the
+    last "on " or "of " before the count on its line: a CPU's model may hold any character but a line break
+    ("Intel(R) Xeon(R) Gold 6248 CPU @ 2.50GHz"), while the sentences around it never put "on" or "of" inside it."""
+    out = []
+    for line in text.split("\n"):
+        pieces, start = [], 0
+        for threads in THREADS.finditer(line):
+            leads = list(MACHINE_LEAD.finditer(line, start, threads.start()))
+            if leads:
+                pieces.append(line[start:leads[-1].end()] + "<machine>")
+                start = threads.start()
+        out.append("".join(pieces) + line[start:])
+    return "\n".join(out)
 
 
 def main():
@@ -47,9 +68,9 @@ def main():
         text = re.sub(r"-{2,}", "--", re.sub(r"[ \t]+", " ", NUMBER.sub("#", data.decode())))
         text = "\n".join(re.sub(r"(DOES NOT hold|holds)", "<verdict>", line) if "in time (" in line else line
                           for line in text.split("\n"))
-        sys.stdout.write(text)
+        sys.stdout.write(blank_machine(text))
     elif path in ("r3/cnj_study.md", "cnj_study.stdout", "r4/integration.md", "integration.stdout"):
-        sys.stdout.write(re.sub(r"\b\d+(\.\d+)?(e[-+]?\d+)? s\b", "<time>", data.decode()))
+        sys.stdout.write(blank_machine(re.sub(r"\b\d+(\.\d+)?(e[-+]?\d+)? s\b", "<time>", data.decode())))
     else:
         sys.stdout.buffer.write(data)
 

@@ -91,5 +91,31 @@ done < <(cd "$reference" && find . -type f | sort)
 while read -r f; do
   [[ -e $reference/$f ]] || { echo "FAIL: $f written, not in the reference"; status=1; }
 done < <(find . -type f | sort)
-echo "$checked reference files compared"
+
+# Another host: the files that name this machine's CPU (as core/machine.cpp reads it from /proc/cpuinfo),
+# with another CPU's name put in its place, must still equal the reference once normalised. Written to fail
+# when the normaliser keeps any part of the host's name, or when the CPU's name is not where it should be.
+model=$(sed -n 's/^model name[[:space:]]*:[[:space:]]*//p' /proc/cpuinfo 2>/dev/null | head -n 1)
+model=${model:-unknown CPU}
+injected=0
+for f in r1/table1.md table1.stdout r2/table2.md table2.stdout; do
+  for other in "Intel(R) Xeon(R) Gold 6248 CPU @ 2.50GHz" "AMD EPYC 9654 96-Core Processor" "unknown CPU" "ARMv8 (rev 1), v8.2"; do
+    mkdir -p "$work/other/$(dirname "$f")"
+    MODEL=$model OTHER=$other /usr/bin/python3 - "$f" "$work/other/$f" <<'PY' || { echo "FAIL: $f does not name the CPU ('$model')"; status=1; continue; }
+import os, sys
+text = open(sys.argv[1], encoding="utf-8").read()
+if os.environ["MODEL"] + " (" not in text:
+    sys.exit(1)
+open(sys.argv[2], "w", encoding="utf-8").write(text.replace(os.environ["MODEL"] + " (", os.environ["OTHER"] + " ("))
+PY
+    (cd "$work/other" && normalise "$f") >"$work/other.normalised"
+    if ! cmp -s "$work/other.normalised" "$reference/$f"; then
+      echo "FAIL: $f with the CPU named '$other' differs from the reference"
+      diff "$work/other.normalised" "$reference/$f" | head -6
+      status=1
+    fi
+    injected=$((injected + 1))
+  done
+done
+echo "$checked reference files compared; $injected with another CPU's name"
 exit $status
