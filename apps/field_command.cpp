@@ -130,7 +130,9 @@ struct FieldCommand : Subcommand {
   }
 
   void run() {
-    dfvn::check_outputs({{"--output", output}});
+    std::vector<std::pair<std::string, std::string>> inputs = transform.input_files();
+    inputs.emplace_back("--input", input.empty() ? std::string("-") : input);
+    dfvn::check_outputs({{"--output", output}}, {}, inputs);
     if (field_kind == "curl" && (domain == "cube" || domain == "ball") && bound != "ramp")
       fail("--field curl's boundary is Bridson's (the ramped stream function in 2D, psi_c in 3D): --domain " + domain +
            " needs --bound ramp");

@@ -260,6 +260,12 @@ dfvn::NoiseTransform TransformOptions::transform() const {
   return t;
 }
 
+std::vector<std::pair<std::string, std::string>> TransformOptions::input_files() const {
+  constexpr std::string_view kNpyPrefix = "npy:";
+  if (lift.starts_with(kNpyPrefix)) return {{"--lift npy:", lift.substr(kNpyPrefix.size())}};
+  return {};
+}
+
 void refuse_options(CLI::App& cmd, const std::vector<std::pair<std::string, std::string>>& names_and_messages) {
   std::vector<std::pair<const CLI::Option*, std::string>> refused;
   for (const auto& [name, message] : names_and_messages)

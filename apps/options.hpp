@@ -74,6 +74,8 @@ struct TransformOptions {
 
   void add_to(CLI::App& cmd);
   dfvn::NoiseTransform transform() const;
+  // The files these options read, as (option, path) for dfvn::check_outputs: --lift npy:FILE's FILE.
+  std::vector<std::pair<std::string, std::string>> input_files() const;
 };
 
 // Names that no longer mean what they meant here (issue 24's one vocabulary), each with the line that

@@ -300,7 +300,8 @@ struct SampleCommand : Subcommand {
     const bool points_to_files = !points_dir.empty() && points_dir != "-";
     if (points_to_files)
       for (dfvn::Method m : config.methods) outputs.emplace_back("--points (" + point_file_name(m) + ")", point_file(m));
-    dfvn::check_outputs(outputs, points_to_files ? std::vector<std::string>{points_dir} : std::vector<std::string>{});
+    dfvn::check_outputs(outputs, points_to_files ? std::vector<std::string>{points_dir} : std::vector<std::string>{},
+                        transform.input_files());
     for (const std::string& warning : dfvn::sampling_warnings(config)) std::fprintf(stderr, "%s: warning: %s\n", kProgram, warning.c_str());
 
     const dfvn::PointFormat point_format = dfvn::parse_point_format(format);

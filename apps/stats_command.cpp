@@ -167,7 +167,9 @@ struct StatsCommand : Subcommand {
       for (const std::string& suffix : dfvn::spectrum_file_suffixes())
         outputs.emplace_back("--spectrum (" + std::filesystem::path(spectrum_prefix + suffix).filename().string() + ")",
                              spectrum_prefix + suffix);
-    dfvn::check_outputs(outputs);
+    std::vector<std::pair<std::string, std::string>> input_files;
+    for (const std::string& input : inputs) input_files.emplace_back("the input", input);
+    dfvn::check_outputs(outputs, {}, input_files);
     if (!spectrum_prefix.empty()) dfvn::check_figure_prerequisites();
     dfvn::PointSetStatisticsOptions options;
     options.discrepancy = discrepancy;

@@ -238,6 +238,43 @@ void check_distinct_outputs(const std::vector<std::pair<std::string, std::string
                                     quoted_path(outputs[i].second) + "; give them different paths");
 }
 
+namespace {
+
+// The regular file a path (or "-": the given descriptor) leads to, as device:inode, following symbolic
+// links; empty when there is none yet, or when it is not a regular file (a device, a FIFO, a terminal).
+std::string existing_file_identity(const std::string& path, int standard_descriptor) {
+  struct stat status {};
+  const int result = path == "-" ? ::fstat(standard_descriptor, &status) : ::stat(path.c_str(), &status);
+  if (result != 0 || !S_ISREG(status.st_mode)) return {};
+  return std::to_string(status.st_dev) + ":" + std::to_string(status.st_ino);
+}
+
+std::string option_as_given(const std::string& option, const std::string& path) {
+  // "the statistics (default --output -)" already says where it goes.
+  if (option.ends_with(")")) return option;
+  // "--lift npy:" takes its path without a space.
+  return option + (option.ends_with(":") ? "" : " ") + (path == "-" ? std::string("-") : quoted_path(path));
+}
+
+}  // namespace
+
+void check_outputs_are_not_inputs(const std::vector<std::pair<std::string, std::string>>& outputs,
+                                  const std::vector<std::pair<std::string, std::string>>& inputs) {
+  std::vector<std::string> input_identities;
+  for (const auto& [option, path] : inputs) input_identities.push_back(existing_file_identity(path, STDIN_FILENO));
+  for (const auto& [output_option, output_path] : outputs) {
+    const std::string identity = existing_file_identity(output_path, STDOUT_FILENO);
+    if (identity.empty()) continue;
+    for (std::size_t i = 0; i < inputs.size(); ++i)
+      if (identity == input_identities[i]) {
+        const std::string output = output_path == "-" ? "standard output" : option_as_given(output_option, output_path);
+        const std::string input = inputs[i].second == "-" ? "standard input" : option_as_given(inputs[i].first, inputs[i].second);
+        throw std::invalid_argument(output + " and " + input +
+                                    " are the same file: writing the output would destroy the input; give it another path");
+      }
+  }
+}
+
 void make_output_directory(const std::string& dir) {
   std::error_code error;
   fs::create_directories(dir, error);
@@ -246,7 +283,9 @@ void make_output_directory(const std::string& dir) {
 }
 
 void check_outputs(const std::vector<std::pair<std::string, std::string>>& outputs,
-                   const std::vector<std::string>& directories) {
+                   const std::vector<std::string>& directories,
+                   const std::vector<std::pair<std::string, std::string>>& inputs) {
+  check_outputs_are_not_inputs(outputs, inputs);
   // Two outputs on one standard output would interleave. "--rdf -" names an option as given; a
   // description in parentheses ("the statistics (default --stats -)") already says it.
   const auto as_given = [](const std::string& option) { return option.ends_with(")") ? option : option + " -"; };

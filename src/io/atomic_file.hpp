@@ -72,14 +72,25 @@ void check_distinct_outputs(const std::vector<std::pair<std::string, std::string
 // std::runtime_error naming it.
 void make_output_directory(const std::string& dir);
 
+// Throws std::invalid_argument, naming both options, when an output of a run is one of its inputs (the
+// same file by any path: symbolic links, hard links, "./" and ".." spellings, standard output or input
+// redirected to it): writing it would destroy the input. Both are (option, path) pairs; "-" is standard
+// output among the outputs and standard input among the inputs. Only files that exist can clash (an input
+// that does not exist fails when it is read); devices, FIFOs and terminals never clash.
+void check_outputs_are_not_inputs(const std::vector<std::pair<std::string, std::string>>& outputs,
+                                  const std::vector<std::pair<std::string, std::string>>& inputs);
+
 // The one check of a run's outputs, made by every subcommand before its work starts. `outputs` are
 // (option, path) pairs, e.g. {"--json", "run.json"} or {"--spectrum (P.csv)", "P.csv"}; `directories`
 // are the folders the run writes into, which are created here once the outputs are known not to clash
-// (outputs inside them are checked after). Refuses, with std::invalid_argument naming both options,
-// two outputs on standard output ("-") and two on the same file (check_distinct_outputs); then
-// creates the directories and checks that each output can be written (check_writable).
+// (outputs inside them are checked after); `inputs` are the files the run reads, as (option, path).
+// Refuses, with std::invalid_argument naming both options, an output that is an input
+// (check_outputs_are_not_inputs), two outputs on standard output ("-") and two on the same file
+// (check_distinct_outputs); then creates the directories and checks that each output can be written
+// (check_writable). Nothing is created or written before the refusals.
 void check_outputs(const std::vector<std::pair<std::string, std::string>>& outputs,
-                   const std::vector<std::string>& directories = {});
+                   const std::vector<std::string>& directories = {},
+                   const std::vector<std::pair<std::string, std::string>>& inputs = {});
 
 // Temporaries that library code keeps outside AtomicOutput (the figures' gnuplot work directory and
 // its files): while a registration lives, the signal handlers and the exit handler of

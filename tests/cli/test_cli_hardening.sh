@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Hostile-input tests of the real binary ($DFVN_SAMPLE), one section per class of issue 9: crashes and
-# NaN/Inf, output safety (signals, devices, links, FIFOs, two outputs on one path), values that must
-# be refused, and messages (one line, the tool's own, echoes shortened and escaped).
+# NaN/Inf, output safety (signals, devices, links, FIFOs, two outputs on one path, an output that is an
+# input), values that must be refused, and messages (one line, the tool's own, echoes shortened and
+# escaped).
 set -u
 source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
@@ -174,6 +175,43 @@ expect_error "--stats a hard link of --rdf" "" "" --dim 3 --grid 4 --methods jit
 expect_error "--stats inside --points" "" "" --dim 3 --grid 4 --methods jitter,cnj --points pts --stats pts/cnj.csv
 expect_message "--stats inside --points" "--points \(cnj.csv\)"
 [[ ! -e x.csv && ! -e pts ]] && ok || bad "refused outputs were created"
+cd "$work" || exit 1
+
+# An output that is an input (the same file by any path) is refused before anything is written, and the
+# input stays as it was: stats, field and sample, every output option, every spelling of the same file.
+mkdir -p "$work/inputs/t" && cd "$work/inputs" || exit 1
+"$bin" --dim 2 --grid 8 --methods sobol --points made --format csv --no-stats --quiet 2>"$work/err" || bad "points: $(cat "$work/err")"
+"$bin" --dim 2 --grid 8 --methods sobol --points made --format npy --no-stats --quiet 2>"$work/err" || bad "points: $(cat "$work/err")"
+cp made/sobol.csv IN.csv && cp made/sobol.csv P_radial.csv && cp made/sobol.npy H.npy
+ln -s IN.csv link.csv && ln IN.csv hard.csv
+before=$(cat IN.csv P_radial.csv H.npy | cksum)
+expect_error "stats -o the input" "" "--output 'IN.csv' and the input 'IN.csv' are the same file" stats IN.csv -o IN.csv
+expect_error "stats --json the input" "" "--json 'IN.csv' and the input 'IN.csv'" stats IN.csv --json IN.csv
+expect_error "stats --rdf the input" "" "--rdf 'IN.csv' and the input 'IN.csv'" stats IN.csv --rdf IN.csv
+expect_error "stats --spectrum over the input" "" "--spectrum \(IN.csv\) and the input 'IN.csv'" stats IN.csv --spectrum IN
+expect_error "stats --spectrum's radial file over the input" "" "--spectrum \(P_radial.csv\) and the input" \
+  stats P_radial.csv --spectrum P
+expect_error "stats -o a link to the input" "" "--output 'link.csv' and the input 'IN.csv'" stats IN.csv -o link.csv
+expect_error "stats the link, -o its target" "" "--output 'IN.csv' and the input 'link.csv'" stats link.csv -o IN.csv
+expect_error "stats -o t/../IN.csv" "" "same file" stats IN.csv -o t/../IN.csv
+expect_error "stats -o ./IN.csv" "" "same file" stats --input IN.csv -o ./IN.csv
+expect_error "stats -o a hard link of the input" "" "--output 'hard.csv' and the input 'IN.csv'" stats IN.csv -o hard.csv
+expect_error "stats -o the second input" "" "and the input 'IN.csv'" stats made/sobol.csv IN.csv -o "$work/inputs/IN.csv"
+"$bin" stats --format csv -o IN.csv - <IN.csv >"$work/out" 2>"$work/err"
+[[ $? -ne 0 ]] && grep -q "and standard input are the same file" "$work/err" && ok || bad "stats - <IN -o IN: $(cat "$work/err")"
+"$bin" stats IN.csv >>IN.csv 2>"$work/err"
+[[ $? -ne 0 ]] && grep -q "standard output and the input 'IN.csv'" "$work/err" && ok || bad "stats IN >>IN: $(cat "$work/err")"
+expect_error "field --input F -o F" "" "--output 'IN.csv' and --input 'IN.csv'" field --dim 2 --input IN.csv -o IN.csv
+"$bin" field --dim 2 -o IN.csv <IN.csv >"$work/out" 2>"$work/err"
+[[ $? -ne 0 ]] && grep -q "and standard input are the same file" "$work/err" && ok || bad "field <IN -o IN: $(cat "$work/err")"
+expect_error "field --lift npy:H -o H" "0.5,0.5\n" "--output 'H.npy' and --lift npy:'H.npy'" field --dim 2 --lift npy:H.npy -o H.npy
+cp H.npy cnj.npy && before_cnj=$(cksum <cnj.npy)
+expect_error "sample --lift npy:F --points over F" "" "--points \(cnj.npy\) and --lift npy:'cnj.npy'" \
+  --dim 2 --grid 4 --domain cube --methods cnj --lift npy:cnj.npy --points . --format npy --quiet
+[[ $(cat IN.csv P_radial.csv H.npy | cksum) == "$before" && $(cksum <cnj.npy) == "$before_cnj" ]] && ok ||
+  bad "an input was changed by a refused run"
+[[ -z $(find . -name '*.tmp.*' -o -name 'IN.json' -o -name 'IN.png' -o -name 'P.*' | head -1) ]] && ok ||
+  bad "a refused run wrote: $(find . -newer made | head -3)"
 cd "$work" || exit 1
 
 # ---------------------------------------------------------------------------------------------------
