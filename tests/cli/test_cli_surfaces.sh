@@ -103,8 +103,8 @@ expect_error "reproduce outputs through a link" "" "--out \(table1.csv\) and --o
 
 # ---------------------------------------------------------------------------------------------------
 # The spectrum of identical points: a constant power, whose anisotropy is not written as -inf.
-printf '0.3,0.4\n0.3,0.4\n0.3,0.4\n' >same.csv
-"$bin" stats --input same.csv --spectrum same --spectrum-frequency 4 -q >same.out 2>err && ok || bad "identical points: $(cat err)"
+printf '0.3,0.4\n0.3,0.4\n0.3,0.4\n' >same_points.csv
+"$bin" stats --input same_points.csv --spectrum same --spectrum-frequency 4 -q >same.out 2>err && ok || bad "identical points: $(cat err)"
 expect_finite "identical points" same.out same.csv same_radial.csv
 [[ $(cut -d, -f3 same_radial.csv | sort -u | tr -d '\n') == anisotropy_db ]] && ok ||
   bad "the anisotropy of a constant spectrum: $(cat same_radial.csv)"
