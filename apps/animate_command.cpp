@@ -105,7 +105,7 @@ struct AnimateCommand : Subcommand {
     options.lattice = dfvn::parse_start_lattice(lattice);
     options.cnj.noise = dfvn::parse_noise_basis(noise);
     options.cnj.transform.steer = steer.spec(noise, options.dimension);
-    options.cnj.domain = dfvn::parse_cnj_domain(domain);
+    options.cnj.domain = dfvn::parse_domain_kind(domain);
     options.cnj.domain_mode = dfvn::parse_domain_mode(domain_mode);
     options.cnj.bound = dfvn::parse_bound(bound);
     options.validate();

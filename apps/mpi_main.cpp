@@ -17,6 +17,7 @@
 #include "dfvn/experiment/experiment.hpp"
 #include "dfvn/experiment/json_report.hpp"
 #include "dfvn/io/atomic_file.hpp"
+#include "dfvn/io/point_sidecar.hpp"
 #include "dfvn/io/point_file.hpp"
 #include "dfvn/mpi/mpi_sampling.hpp"
 #include "dfvn/sampling/method.hpp"
@@ -32,7 +33,8 @@ struct Options {
   dfvn_cli::ProgressOptions progress;
   dfvn::SampleConfig config;
   std::string methods = "cnj,jitter,random,sobol";
-  std::string protocol;
+  std::string protocol = "fair";
+  bool periodic = false;
   std::string knn = "nanoflann";
   std::string integrator = "rk4";
   std::string noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
@@ -43,7 +45,7 @@ struct Options {
   std::string json_path;
   std::string points_dir;
   std::string format = "npy";
-  std::string domain{dfvn::to_string(dfvn::kDefaultCnjDomain)};
+  std::string domain{dfvn::to_string(dfvn::kDefaultDomainKind)};
   std::string domain_mode = "conformant";
   std::uint64_t count = 0;
   bool no_stats = false;
@@ -68,9 +70,9 @@ void add_options(CLI::App& app, Options& o) {
                  "Comma list of methods, of cnj, jitter, random, sobol (the index-addressable ones; pds,\n"
                  "jitter-matched, halton and lhs are refused)")
       ->capture_default_str();
-  app.add_option("--protocol", o.protocol,
-                 "paper or unit, as in 'dfvn-sample sample'. Default: paper with --grid (or neither), unit with -n")
-      ->check(CLI::IsMember({"paper", "unit"}));
+  app.add_option("--protocol", o.protocol, "fair or paper, as in 'dfvn-sample sample'")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"fair", "paper", "unit"}));
   o.stats_option = app.add_option("-o,--output,--stats", o.stats_path,
                                   "The statistics CSV, written by rank 0 ('-' = standard output); the same bytes as\n"
                                   "'dfvn-sample sample --stream' with the same options")
@@ -82,9 +84,9 @@ void add_options(CLI::App& app, Options& o) {
                         ->capture_default_str()
                         ->check(CLI::IsMember({"csv", "npy", "dat", "bin"}));
   app.add_flag("--no-stats", o.no_stats, "Generate the point sets only (needs --points): no statistics and no stats CSV");
-  app.add_flag("--periodic", config.periodic_statistics,
-               "Measure every set on the torus of its box: minimum-image nearest-neighbour distances and RDF, the\n"
-               "halos wrapping from the last rank to the first (off: Euclidean distances in the box), as in sample");
+  app.add_flag("--periodic", o.periodic,
+               "Measure on the torus (minimum-image distances, the halos wrapping from the last rank to the first):\n"
+               "what --domain torus, the default, does; refused with --domain cube, as in sample");
   app.add_option("--rdf", o.rdf_path,
                  "Also compute radial distribution functions and write them to this CSV (dim,method,r,g), by rank 0:\n"
                  "the same bytes as 'dfvn-sample sample --stream --rdf'");
@@ -127,8 +129,8 @@ void add_options(CLI::App& app, Options& o) {
       ->capture_default_str()
       ->check(CLI::Range(0, 1000));
   o.domain_option = app.add_option("--domain", o.domain,
-                                   "Where CNJ's points stay: torus or cube (the ball is refused). Not given: torus, or\n"
-                                   "cube with --domain-mode drop")
+                                   "Where every method's points live and are measured: torus or cube (the ball and the\n"
+                                   "sphere are refused). Not given: torus, or cube with --domain-mode drop or --protocol paper")
                         ->capture_default_str()
                         ->check(CLI::IsMember({"torus", "cube", "ball"}));
   app.add_option("--domain-mode", o.domain_mode, "conformant or drop, as in sample")
@@ -158,15 +160,23 @@ void configure(Options& o) {
   dfvn::SampleConfig& config = o.config;
   config.seed = o.common.seed;
   config.threads = o.common.threads;
-  config.protocol = dfvn::parse_protocol(!o.protocol.empty() ? o.protocol : o.count > 0 ? "unit" : "paper");
+  if (o.protocol == "unit")
+    throw std::invalid_argument("--protocol unit is now --protocol fair (the default) with --domain cube");
+  const dfvn::Protocol protocol = dfvn::parse_protocol(o.protocol);
   config.knn = dfvn::parse_knn_backend(o.knn);
   config.scramble = dfvn::parse_scramble(o.scramble);
   config.cnj.trace.integrator = dfvn::parse_integrator(o.integrator);
   config.cnj.noise = dfvn::parse_noise_basis(o.noise);
   config.cnj.trace.reprojection = dfvn::parse_reprojection(o.reproject);
-  if (o.domain_option->count() == 0 && o.domain_mode == "drop") o.domain = "cube";
-  config.cnj.domain = dfvn::parse_cnj_domain(o.domain);
+  if (o.domain_option->count() == 0 && (o.domain_mode == "drop" || protocol == dfvn::Protocol::paper)) o.domain = "cube";
+  if (protocol == dfvn::Protocol::paper && o.domain != "cube")
+    throw std::invalid_argument("--protocol paper is Section 5.1, in the cube: --domain " + o.domain + " needs --protocol fair");
+  config.cnj.domain = dfvn::parse_domain_kind(o.domain);
   config.cnj.domain_mode = dfvn::parse_domain_mode(o.domain_mode);
+  if (o.periodic && config.cnj.domain != dfvn::DomainKind::torus)
+    throw std::invalid_argument("--periodic measures on the torus; the " + o.domain +
+                                "'s sets are measured in its own metric (drop --periodic, or use --domain torus)");
+  config.use_protocol(protocol);
   config.methods.clear();
   for (const auto& name : CLI::detail::split(o.methods, ','))
     config.methods.push_back(dfvn::parse_method(CLI::detail::trim_copy(name)));
@@ -209,7 +219,10 @@ int run(Options& o, int rank, MPI_Comm comm) {
       if (!o.rdf_path.empty()) outputs.emplace_back("--rdf", o.rdf_path);
       if (!o.json_path.empty()) outputs.emplace_back("--json", o.json_path);
       if (!o.points_dir.empty())
-        for (dfvn::Method m : o.config.methods) outputs.emplace_back("--points", point_file(o, m));
+        for (dfvn::Method m : o.config.methods) {
+          outputs.emplace_back("--points", point_file(o, m));
+          outputs.emplace_back("--points (sidecar)", dfvn::point_sidecar_path(point_file(o, m)));
+        }
       dfvn::check_outputs(outputs, o.points_dir.empty() ? std::vector<std::string>{} : std::vector<std::string>{o.points_dir});
     } catch (const std::exception& e) {
       problem = e.what();
@@ -244,6 +257,12 @@ int run(Options& o, int rank, MPI_Comm comm) {
       dfvn::write_file_atomically(o.json_path, dfvn::sampling_json(o.config, {{o.config.seed, results}}, !o.no_timing));
     if (!o.rdf_path.empty()) dfvn::write_file_atomically(o.rdf_path, rdf);
     if (!o.no_stats) dfvn::write_file_atomically(o.stats_path, stats);
+    // Each point file's sidecar, as sample --stream writes it.
+    if (!o.points_dir.empty())
+      for (const auto& r : results)
+        dfvn::write_file_atomically(dfvn::point_sidecar_path(point_file(o, r.plan.method)),
+                                    dfvn::point_sidecar_json(r.plan.domain, o.config.dimension, {r.point_count},
+                                                             dfvn::point_set_made_by_json(o.config, r, {o.config.seed})));
   }
   return 0;
 }

@@ -18,8 +18,10 @@
 #include "dfvn/experiment/json_report.hpp"
 #include "dfvn/experiment/realizations.hpp"
 #include "dfvn/experiment/streamed_sampling.hpp"
+#include "dfvn/experiment/verdict.hpp"
 #include "dfvn/io/atomic_file.hpp"
 #include "dfvn/io/point_file.hpp"
+#include "dfvn/io/point_sidecar.hpp"
 #include "dfvn/sampling/method.hpp"
 
 #include "options.hpp"
@@ -32,7 +34,11 @@ struct SampleCommand : Subcommand {
   ProgressOptions progress;
   dfvn::SampleConfig config;
   std::string methods = "cnj,jitter-matched,jitter,pds,sobol";
-  std::string protocol;  // empty: paper with --grid, unit with -n (see --protocol)
+  std::string protocol = "fair";
+  CLI::Option* protocol_option = nullptr;
+  CLI::Option* domain_mode_option = nullptr;
+  CLI::Option* on_option = nullptr;
+  bool periodic = false;
   std::string knn = "nanoflann";
   std::string integrator = "rk4";
   std::string noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
@@ -44,8 +50,9 @@ struct SampleCommand : Subcommand {
   std::string rdf_path;
   std::string points_dir;
   std::string json_path;
+  std::string report_path;
   std::string format = "csv";
-  std::string domain{dfvn::to_string(dfvn::kDefaultCnjDomain)};
+  std::string domain{dfvn::to_string(dfvn::kDefaultDomainKind)};
   std::string domain_mode = "conformant";
   std::string bound = "eq13";
   CLI::Option* bound_options[2] = {};  // --bound, --boundary-spacings: only where CNJ meets a boundary
@@ -87,13 +94,17 @@ struct SampleCommand : Subcommand {
                             "domain); jitter: the protocol's fixed half-width; halton: scrambled unless --scramble none;\n"
                             "with --on sphere: cnj,random")
             ->capture_default_str();
-    cmd->add_option("--protocol", protocol,
-                    "paper: Section 5.1 as the paper ran it (lattice linspace(0.05, 0.95, K), jitter +-0.05, PDS\n"
-                    "radius 0.1 and Sobol on [0, 0.1K]^N, Sobol count 2^round(log2 K^N)); unit: every method in\n"
-                    "[0,1]^N at the density of a cell-centred K^N lattice (jitter +-1/(2K), PDS radius 1/K).\n"
-                    "Default: paper with --grid (or neither), unit with -n, so that -n COUNT gives points in [0,1]^N\n"
-                    "as scipy.stats.qmc and UTK do")
-        ->check(CLI::IsMember({"paper", "unit"}));
+    protocol_option =
+        cmd->add_option("--protocol", protocol,
+                        "fair: every method in the run's --domain at one count (the K^N sites of the cell-centred\n"
+                        "lattice, spacing 1/K; Sobol and Halton exactly that many), stratified jitter +-1/(2K), Poisson\n"
+                        "disk at the largest radius that reaches the count, every set measured in the domain's metric.\n"
+                        "paper: Section 5.1 as the paper ran it, CNJ included: in the cube, lattice\n"
+                        "linspace(0.05, 0.95, K), jitter +-0.05, CNJ one RK4 step with the points that leave dropped,\n"
+                        "PDS radius 0.1 and Sobol on [0, 0.1K]^N (Sobol count 2^round(log2 K^N)), Euclidean distances;\n"
+                        "its 6D and 7D sets differ in density (reproduce table1 says by how much)")
+            ->capture_default_str()
+            ->check(CLI::IsMember({"fair", "paper", "unit"}));
     stats_option = cmd->add_option("-o,--output,--stats", stats_path,
                                    "Main output: the statistics CSV ('-' = standard output); --stats is its second name.\n"
                                    "Point sets go to --points")
@@ -121,6 +132,11 @@ struct SampleCommand : Subcommand {
     cmd->add_option("--json", json_path,
                     "Also write the run as JSON: parameters, every method's statistics and derived values ('-' = standard\n"
                     "output)");
+    cmd->add_option("--report", report_path,
+                    "Also write the verdict as Markdown: per statistic (nn_min, nn_q01, nn_median_scaled) the methods\n"
+                    "ranked, each against jitter-matched and Poisson disk as a ratio, and with --realizations R the\n"
+                    "mean +- standard error and whether a difference exceeds two standard errors ('-' = standard\n"
+                    "output). Its summary goes to standard error unless -q");
     cmd->add_flag("--no-timing", no_timing,
                   "Leave the seconds columns (seconds_generate, seconds_stats) empty (and out of --json): two runs with the same seed give identical files");
     cmd->add_option("--knn", knn, "KD-tree backend: nanoflann or flann (identical distances)")
@@ -160,12 +176,14 @@ struct SampleCommand : Subcommand {
     add_phase_option(*cmd, config.cnj.phase);
     transform.add_to(*cmd);
     domain_option = cmd->add_option("--domain", domain,
-                                    "Where CNJ's points stay: torus ([0,1)^N with opposite faces identified: a periodic\n"
-                                    "field, wrapped traces, the cell-centred lattice; no boundary at all), cube ([0,1]^N)\n"
-                                    "or ball (its inscribed ball; the lattice clipped to it). Not given: torus, or cube\n"
-                                    "when --domain-mode drop, --bound or --boundary-spacings asks for a boundary")
+                                    "Where every method's points live and are measured: torus ([0,1)^N with opposite faces\n"
+                                    "identified: minimum-image distances; CNJ along a periodic field with wrapped traces; Poisson\n"
+                                    "disk toroidal), cube ([0,1]^N, Euclidean distances), ball (its inscribed ball: the lattice's\n"
+                                    "sites in it, sequences by rejection; not jitter-matched or lhs) or sphere (S^{N-1}, N >= 3:\n"
+                                    "cnj and random, geodesic distances). Not given: torus; cube when --domain-mode drop,\n"
+                                    "--bound, --boundary-spacings or --protocol paper asks for it; sphere with --on sphere")
                         ->capture_default_str()
-                        ->check(CLI::IsMember({"torus", "cube", "ball"}));
+                        ->check(CLI::IsMember({"torus", "cube", "ball", "sphere"}));
     bound_options[0] = cmd->add_option("--bound", bound,
                                        "How CNJ's field meets the boundary of --domain cube or ball (conformant): eq13\n"
                                        "(the paper's Eq. 13) or ramp (Bridson et al. 2007's ramp of the noise)")
@@ -177,23 +195,26 @@ struct SampleCommand : Subcommand {
                         "ramp's d0), at most a quarter of the cube's side")
             ->capture_default_str()
             ->check(kPositiveFinite);
-    cmd->add_flag("--periodic", config.periodic_statistics,
-                  "Measure every set on the torus of its box: minimum-image nearest-neighbour distances and RDF\n"
-                  "(off: Euclidean distances in the box, as the paper measures)");
-    cmd->add_option("--domain-mode", domain_mode,
+    cmd->add_flag("--periodic", periodic,
+                  "Measure on the torus (minimum-image distances): what --domain torus, the default, does; refused\n"
+                  "with another domain, whose metric is its own");
+    domain_mode_option = cmd->add_option("--domain-mode", domain_mode,
                     "conformant: CNJ along the field bounded by the domain (Eq. 13), no point leaves; drop: the\n"
                     "free field, points that leave are dropped (the paper's protocol; reproduce table1 uses it)")
         ->capture_default_str()
         ->check(CLI::IsMember({"conformant", "drop"}));
-    cmd->add_option("--on", on,
-                    "sphere: methods cnj (traced with f_1 = |x|^2) and random on the unit sphere S^{N-1}, N >= 3,\n"
-                    "from the K^N lattice on [-1,1]^N within half a spacing of it, projected; geodesic statistics")
+    on_option = cmd->add_option("--on", on,
+                    "sphere: the same as --domain sphere: methods cnj (traced with f_1 = |x|^2) and random on the\n"
+                    "unit sphere S^{N-1}, N >= 3, from the K^N lattice on [-1,1]^N within half a spacing of it,\n"
+                    "projected; geodesic statistics")
         ->capture_default_str()
         ->check(CLI::IsMember({"none", "sphere"}));
     cmd->add_option("--reproject-iters", config.cnj.trace.reproject_iterations, "CNJ reprojection iterations R at most")
         ->capture_default_str()
         ->check(CLI::Range(0, 1000));
-    cmd->add_option("--pds-radius", config.pds_radius, "Poisson disk radius; 0 = the protocol's (paper 0.1, unit 1/K)")
+    cmd->add_option("--pds-radius", config.pds_radius,
+                    "Poisson disk radius, stopping at the count; 0 = the protocol's: fair, the largest radius found to\n"
+                    "reach the count (reported in the radius column); paper, 0.1")
         ->capture_default_str()
         ->check(kNonNegativeFinite);
     cmd->add_option("--pds-candidates", config.pds_candidates, "Poisson disk candidates per active point (Bridson's k)")
@@ -237,7 +258,10 @@ struct SampleCommand : Subcommand {
   void run() {
     config.seed = common.seed;
     config.threads = common.threads;
-    config.protocol = dfvn::parse_protocol(!protocol.empty() ? protocol : count > 0 ? "unit" : "paper");
+    if (protocol == "unit")
+      throw std::invalid_argument("--protocol unit is now --protocol fair (the default) with --domain cube: every method "
+                                  "in [0,1]^N at the lattice's count, Euclidean distances");
+    const dfvn::Protocol chosen_protocol = dfvn::parse_protocol(protocol);
     config.knn = dfvn::parse_knn_backend(knn);
     config.scramble = dfvn::parse_scramble(scramble);
     config.cnj.trace.integrator = dfvn::parse_integrator(integrator);
@@ -251,23 +275,20 @@ struct SampleCommand : Subcommand {
     if (config.cnj.field == dfvn::FieldKind::curl && config.cnj.trace.reprojection != dfvn::Reprojection::none)
       throw std::invalid_argument("--field curl has no reprojection (its streamlines are not intersections of "
                                   "iso-surfaces): --reproject " + reproject + " needs --field dfvn");
-    // Options that only mean something at a boundary put CNJ in the cube when no domain is named.
-    const bool asks_for_a_boundary =
-        domain_mode == "drop" || bound_options[0]->count() > 0 || bound_options[1]->count() > 0;
-    if (domain_option->count() == 0 && asks_for_a_boundary) domain = "cube";
-    config.cnj.domain = dfvn::parse_cnj_domain(domain);
-    config.cnj.domain_mode = dfvn::parse_domain_mode(domain_mode);
-    config.cnj.bound = dfvn::parse_bound(bound);
+    choose_domain(chosen_protocol);
     for (const CLI::Option* option : bound_options)
       if (option->count() > 0 &&
-          (config.cnj.domain == dfvn::CnjDomain::torus || config.cnj.domain_mode == dfvn::DomainMode::drop))
+          ((config.cnj.domain != dfvn::DomainKind::cube && config.cnj.domain != dfvn::DomainKind::ball) ||
+           config.cnj.domain_mode == dfvn::DomainMode::drop))
         throw std::invalid_argument(option->get_name() + " applies to conformant CNJ in --domain cube or ball; " +
-                                    (config.cnj.domain == dfvn::CnjDomain::torus ? "the torus has no boundary"
-                                                                                  : "drop mode traces the free field"));
-    config.on = dfvn::parse_surface(on);
-    if (config.cnj.field == dfvn::FieldKind::curl && config.on != dfvn::Surface::none)
-      throw std::invalid_argument("--field curl has no surface form: --on " + on + " needs --field dfvn");
-    if (config.on == dfvn::Surface::sphere && methods_option->count() == 0) methods = "cnj,random";
+                                    (config.cnj.domain == dfvn::DomainKind::torus    ? "the torus has no boundary"
+                                     : config.cnj.domain == dfvn::DomainKind::sphere ? "the sphere has no boundary"
+                                     : config.protocol == dfvn::Protocol::paper      ? "--protocol paper drops the points that leave"
+                                                                                     : "drop mode traces the free field"));
+    if (config.cnj.field == dfvn::FieldKind::curl && config.cnj.domain == dfvn::DomainKind::sphere)
+      throw std::invalid_argument("--field curl has no surface form: --domain sphere needs --field dfvn");
+    if (methods_option->count() == 0 && config.cnj.domain == dfvn::DomainKind::sphere) methods = "cnj,random";
+    if (methods_option->count() == 0 && config.cnj.domain == dfvn::DomainKind::ball) methods = "cnj,jitter,pds,sobol";
     config.methods.clear();
     for (const auto& name : CLI::detail::split(methods, ',')) {
       config.methods.push_back(dfvn::parse_method(CLI::detail::trim_copy(name)));
@@ -281,8 +302,7 @@ struct SampleCommand : Subcommand {
     config.cnj.transform = transform.transform();
     config.cnj.transform.steer = steer.spec(noise, config.dimension);
     if (config.cnj.transform.active())
-      dfvn::check_transform_available(config.cnj.transform, config.dimension,
-                                      config.on == dfvn::Surface::none && config.cnj.domain == dfvn::CnjDomain::torus);
+      dfvn::check_transform_available(config.cnj.transform, config.dimension, config.cnj.domain == dfvn::DomainKind::torus);
     config.compute_statistics = !no_stats;
     config.compute_rdf = !rdf_path.empty();
     choose_streaming();
@@ -296,13 +316,19 @@ struct SampleCommand : Subcommand {
       outputs.emplace_back(stats_option->count() > 0 ? "--output" : "the statistics (default --output -)", stats_path);
     if (!rdf_path.empty()) outputs.emplace_back("--rdf", rdf_path);
     if (!json_path.empty()) outputs.emplace_back("--json", json_path);
+    if (!report_path.empty()) outputs.emplace_back("--report", report_path);
     if (points_dir == "-") outputs.emplace_back("--points", points_dir);
     const bool points_to_files = !points_dir.empty() && points_dir != "-";
     if (points_to_files)
-      for (dfvn::Method m : config.methods) outputs.emplace_back("--points (" + point_file_name(m) + ")", point_file(m));
+      for (dfvn::Method m : config.methods) {
+        outputs.emplace_back("--points (" + point_file_name(m) + ")", point_file(m));
+        outputs.emplace_back("--points (" + point_file_name(m) + ".json)", dfvn::point_sidecar_path(point_file(m)));
+      }
     dfvn::check_outputs(outputs, points_to_files ? std::vector<std::string>{points_dir} : std::vector<std::string>{},
                         transform.input_files());
-    for (const std::string& warning : dfvn::sampling_warnings(config)) std::fprintf(stderr, "%s: warning: %s\n", kProgram, warning.c_str());
+    for (const std::string& warning : dfvn::sampling_warnings(config))
+      if (config.count > 0 || !progress.quiet)  // a count the user chose deserves its warning even with -q
+        std::fprintf(stderr, "%s: %s: %s\n", kProgram, config.count > 0 ? "warning" : "note", warning.c_str());
 
     const dfvn::PointFormat point_format = dfvn::parse_point_format(format);
     if (config.stream) return run_streamed(point_format);
@@ -316,6 +342,7 @@ struct SampleCommand : Subcommand {
     std::vector<dfvn::SamplingRealization> runs;
     // --sets M > 1 with --points: each method's M sets, written into one file once all are made.
     std::vector<std::vector<dfvn::PointSet>> sets_of(config.methods.size());
+    std::vector<dfvn::MethodResult> first_results;  // with --sets M > 1: what the sidecars describe
     const bool one_file_of_sets = !points_dir.empty() && realizations > 1;
     // Realization r uses seed s + r; every statistic is then summarised as mean and sd per method.
     for (int realization = 0; realization < realizations; ++realization) {
@@ -326,9 +353,11 @@ struct SampleCommand : Subcommand {
         } else if (!points_dir.empty()) {
           reporter->finish();  // the live line stays off standard output's terminal
           dfvn::write_point_file(point_file(r.plan.method), r.points, point_format);
+          write_sidecar(r, {config.seed}, {r.point_count});
         }
       });
       for (const auto& r : results) {
+        if (one_file_of_sets && realization == 0) first_results.push_back(r);
         realization_rows.push_back(dfvn::stats_csv_row(config, r, !no_timing));
         stats += realization_rows.back();
         realization_rows.back().pop_back();
@@ -351,8 +380,15 @@ struct SampleCommand : Subcommand {
                                                   sets_of[m].size(), e.what()));
         }
       }
-      for (std::size_t m = 0; m < sets_of.size(); ++m)
+      std::vector<std::uint64_t> seeds;
+      for (int r = 0; r < realizations; ++r) seeds.push_back(common.seed + static_cast<std::uint64_t>(r));
+      config.seed = common.seed;
+      for (std::size_t m = 0; m < sets_of.size(); ++m) {
         dfvn::write_point_sets_file(point_file(config.methods[m]), sets_of[m], point_format);
+        std::vector<std::uint64_t> counts;
+        for (const dfvn::PointSet& set : sets_of[m]) counts.push_back(set.size());
+        write_sidecar(first_results[m], seeds, counts);
+      }
     }
     if (realizations > 1)
       stats += dfvn::realization_summary_rows(stats.substr(0, stats.find('\n')), realization_rows, {"dim", "grid", "method"}, "seed");
@@ -360,6 +396,43 @@ struct SampleCommand : Subcommand {
     if (!json_path.empty()) dfvn::write_file_atomically(json_path, dfvn::sampling_json(config, runs, !no_timing));
     if (!rdf_path.empty()) dfvn::write_file_atomically(rdf_path, rdf);
     if (!no_stats) dfvn::write_file_atomically(stats_path, stats);
+    report_verdict(runs);
+  }
+
+  // --report's Markdown, and its summary on standard error unless -q.
+  void report_verdict(const std::vector<dfvn::SamplingRealization>& runs) const {
+    if (no_stats) return;
+    if (!report_path.empty()) dfvn::write_file_atomically(report_path, dfvn::verdict_markdown(config, runs));
+    if (!progress.quiet)
+      for (const std::string& line : dfvn::verdict_summary(config, runs)) std::fprintf(stderr, "%s: %s\n", kProgram, line.c_str());
+  }
+
+  // The run's one domain (--domain, --on sphere, and what the boundary options and the paper protocol imply),
+  // then the protocol and what it fixes (SampleConfig::use_protocol).
+  void choose_domain(dfvn::Protocol chosen_protocol) {
+    const bool paper = chosen_protocol == dfvn::Protocol::paper;
+    if (on_option->count() > 0 && on == "sphere") {
+      if (domain_option->count() > 0 && domain != "sphere")
+        throw std::invalid_argument("--on sphere is --domain sphere; it contradicts --domain " + domain);
+      domain = "sphere";
+    } else if (domain_option->count() == 0) {
+      // Options that only mean something at a boundary, and the paper's protocol, put the run in the cube.
+      const bool asks_for_a_boundary =
+          domain_mode == "drop" || bound_options[0]->count() > 0 || bound_options[1]->count() > 0 || paper;
+      if (asks_for_a_boundary) domain = "cube";
+    }
+    if (paper && domain != "cube")
+      throw std::invalid_argument("--protocol paper is Section 5.1, in the cube: --domain " + domain + " needs --protocol fair");
+    if (paper && domain_mode_option->count() > 0 && domain_mode != "drop")
+      throw std::invalid_argument("--protocol paper drops the CNJ points that leave the cube: --domain-mode " + domain_mode +
+                                  " needs --protocol fair");
+    config.cnj.domain = dfvn::parse_domain_kind(domain);
+    config.cnj.domain_mode = dfvn::parse_domain_mode(domain_mode);
+    config.cnj.bound = dfvn::parse_bound(bound);
+    if (periodic && config.cnj.domain != dfvn::DomainKind::torus)
+      throw std::invalid_argument("--periodic measures on the torus; the " + domain +
+                                  "'s sets are measured in its own metric (drop --periodic, or use --domain torus)");
+    config.use_protocol(chosen_protocol);
   }
 
   // --stream when asked, or when the in-memory sets would exceed the memory limit and the run can stream.
@@ -393,6 +466,8 @@ struct SampleCommand : Subcommand {
     if (!points_dir.empty()) path = [this](dfvn::Method m) { return point_file(m); };
     const auto results = dfvn::run_streamed_sampling(config, config.stream_slabs, path, point_format, reporter->callback());
     reporter->complete();
+    if (!points_dir.empty() && points_dir != "-")
+      for (const auto& r : results) write_sidecar(r, {config.seed}, {r.point_count});
     std::string stats = dfvn::stats_csv_header();
     std::string rdf = dfvn::rdf_csv_header();
     for (const auto& r : results) {
@@ -403,6 +478,7 @@ struct SampleCommand : Subcommand {
       dfvn::write_file_atomically(json_path, dfvn::sampling_json(config, {{config.seed, results}}, !no_timing));
     if (!rdf_path.empty()) dfvn::write_file_atomically(rdf_path, rdf);
     if (!no_stats) dfvn::write_file_atomically(stats_path, stats);
+    report_verdict({{config.seed, results}});
   }
 
   // Options that only make sense together (the outputs themselves: dfvn::check_outputs).
@@ -410,8 +486,8 @@ struct SampleCommand : Subcommand {
     if (format_option->count() > 0 && points_dir.empty())
       throw std::invalid_argument("--format " + format + " applies to --points, which is not given");
     if (no_stats && points_dir.empty()) throw std::invalid_argument("--no-stats writes only point sets: give --points DIR (or -)");
-    if (no_stats && (stats_option->count() > 0 || !rdf_path.empty()))
-      throw std::invalid_argument("--no-stats computes no statistics: drop --output and --rdf");
+    if (no_stats && (stats_option->count() > 0 || !rdf_path.empty() || !report_path.empty()))
+      throw std::invalid_argument("--no-stats computes no statistics: drop --output, --rdf and --report");
     // -o is the statistics CSV: a point file's name there is the old mistake of writing statistics
     // where points were meant to go (issue 24).
     if (stats_option->count() > 0 && looks_like_point_file(stats_path))
@@ -436,6 +512,16 @@ struct SampleCommand : Subcommand {
     if (points_dir == "-" && config.methods.size() != 1)
       throw std::invalid_argument(fmt::format("--points - writes one point set to standard output; --methods names {}",
                                               config.methods.size()));
+  }
+
+  // The point file's sidecar (io/point_sidecar.hpp): its domain and what made it, for `stats` to measure it
+  // again the same way. None for standard output.
+  void write_sidecar(const dfvn::MethodResult& r, const std::vector<std::uint64_t>& seeds,
+                     const std::vector<std::uint64_t>& points_per_set) const {
+    const std::string path = dfvn::point_sidecar_path(point_file(r.plan.method));
+    if (path.empty()) return;
+    dfvn::write_file_atomically(path, dfvn::point_sidecar_json(r.plan.domain, config.dimension, points_per_set,
+                                                               dfvn::point_set_made_by_json(config, r, seeds)));
   }
 
   // With -n, PDS that saturated before the count: say so (the saturated column has it in every run).

@@ -6,16 +6,20 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "dfvn/core/message_text.hpp"
 #include "dfvn/core/point_set.hpp"
 #include "dfvn/experiment/json_report.hpp"
 #include "dfvn/experiment/realizations.hpp"
 #include "dfvn/io/atomic_file.hpp"
 #include "dfvn/io/csv.hpp"
 #include "dfvn/io/point_reader.hpp"
+#include "dfvn/io/point_sidecar.hpp"
 #include "dfvn/plot/gnuplot.hpp"
 #include "dfvn/stats/distance_scale.hpp"
 #include "dfvn/stats/point_set_statistics.hpp"
@@ -46,8 +50,10 @@ struct StatsCommand : Subcommand {
   bool discrepancy = false;
   bool no_timing = false;
   bool periodic = false;
+  std::string domain;  // empty: each input's sidecar's, else the cube
   ProgressOptions progress;
   CLI::Option* output_option = nullptr;
+  CLI::Option* side_option = nullptr;
 
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
@@ -84,16 +90,27 @@ struct StatsCommand : Subcommand {
                     "RDF query points: a subset of about this many, drawn with seed 1 in every set (0 = all points)")
         ->capture_default_str()
         ->check(kUnsignedInteger);
-    cmd->add_option("--domain-side", domain_side, "The points lie in [0, S]^N, S in [2^-1000, 2^1000]")
-        ->capture_default_str()
-        ->check(kDomainSide);
+    side_option = cmd->add_option("--domain-side", domain_side,
+                                  "The points lie in [0, S]^N (or the ball or sphere inscribed in it), S in [2^-1000,\n"
+                                  "2^1000]. Default: the side the input's sidecar (FILE.json, written beside the point\n"
+                                  "files of dfvn-sample) gives, else 1")
+                      ->capture_default_str()
+                      ->check(kDomainSide);
+    cmd->add_option("--domain", domain,
+                    "Where the points live and how they are measured: torus ([0,1)^N, [0,S)^N with --domain-side:\n"
+                    "minimum-image distances), cube ([0,1]^N or [0,S]^N: Euclidean; the RDF edge-corrected), ball\n"
+                    "(its inscribed ball) or sphere (S^{N-1} centred at the origin: the unit sphere, or of radius S/2\n"
+                    "with --domain-side; geodesic distances).\n"
+                    "Default: the input's sidecar's domain, else cube (with a warning when the points fill less\n"
+                    "than 90% of the cube's volume)")
+        ->check(CLI::IsMember({"torus", "cube", "ball", "sphere"}));
     cmd->add_flag("--discrepancy", discrepancy, "Also compute the four L2 discrepancies (O(points^2) work)");
     cmd->add_option("--knn", knn, "KD-tree backend: nanoflann or flann (not used with --periodic)")
         ->capture_default_str()
         ->check(CLI::IsMember({"nanoflann", "flann"}));
     cmd->add_flag("--periodic", periodic,
                   "Measure on the torus [0,S)^N: minimum-image nearest-neighbour distances (opposite faces\n"
-                  "identified), as for sets made periodic (dfvn-sample --domain torus, UTK's periodic samplers)");
+                  "identified), as for sets made periodic (UTK's periodic samplers); the same as --domain torus");
     output_option = cmd->add_option("-o,--output", output, "Main output: the statistics CSV ('-' = standard output)")
                         ->capture_default_str();
     cmd->add_option("--json", json_path, "Also write the statistics as JSON: every set's values ('-' = standard output)");
@@ -115,16 +132,19 @@ struct StatsCommand : Subcommand {
 
   // The sets of one input, each checked to lie in the domain; `owner` gets the input's index per set.
   void read_input(std::size_t index, dfvn::InputFormat input_format, std::vector<dfvn::PointSet>& sets,
-                  std::vector<std::size_t>& owner) const {
+                  std::vector<std::size_t>& owner, std::vector<std::string>& warnings) const {
     const std::string& input = inputs[index];
     const std::size_t first = sets.size();
     try {
       for (auto& table : dfvn::read_point_sets(input, input_format, dimension)) {
         if (dimension != 0 && table.dimension != dimension)
           throw dfvn::InputError(fmt::format("{}D points, not the {}D of --dim", table.dimension, dimension));
-        sets.push_back(dfvn::PointSet{table.dimension, std::move(table.coordinates), dfvn::Box{0.0, domain_side}});
+        sets.push_back(dfvn::PointSet{table.dimension, std::move(table.coordinates), domain_of(input, table.dimension)});
         owner.push_back(index);
         dfvn::check_point_set(sets.back());
+        const bool chosen = !domain.empty() || periodic || side_option->count() > 0;
+        if (!chosen && (input == kStandardInput || !dfvn::read_point_sidecar_domain(input)))
+          if (std::string warning = sparse_warning(input, sets.back()); !warning.empty()) warnings.push_back(warning);
       }
     } catch (const std::exception& e) {
       fail(input_name(input) + (sets.size() == first ? ", " : fmt::format(", set {}: ", sets.size() - 1 - first)) + e.what());
@@ -133,7 +153,46 @@ struct StatsCommand : Subcommand {
 
   static std::string input_name(const std::string& input) { return input == kStandardInput ? "standard input" : input; }
 
+  // Where an input's points live: the options' domain where given (--domain or --periodic, --domain-side),
+  // the rest from the input's sidecar (io/point_sidecar.hpp), else the cube [0, 1]^N.
+  dfvn::Domain domain_of(const std::string& input, int n) const {
+    std::optional<dfvn::Domain> described;
+    if (input != kStandardInput) described = dfvn::read_point_sidecar_domain(input, n);
+    dfvn::Domain d = described.value_or(dfvn::Domain{dfvn::DomainKind::cube, 0.0, 1.0});
+    if (!domain.empty()) {
+      const dfvn::DomainKind kind = dfvn::parse_domain_kind(domain);
+      if (!described || described->kind != kind) d = dfvn::Domain::unit(kind);
+    }
+    if (periodic) d.kind = dfvn::DomainKind::torus;
+    if (side_option->count() > 0) {
+      d.side = domain_side;
+      d.lo = d.kind == dfvn::DomainKind::sphere ? -0.5 * domain_side : 0.0;
+    }
+    return d;
+  }
+
+  // A set measured in [0, 1]^N by default whose points fill little of it was probably made in another
+  // box: its density-scaled statistics would mislead without a word.
+  static std::string sparse_warning(const std::string& input, const dfvn::PointSet& set) {
+    const int n = set.dimension;
+    std::vector<double> lo(n, std::numeric_limits<double>::infinity()), hi(n, -std::numeric_limits<double>::infinity());
+    for (std::size_t i = 0; i < set.size(); ++i)
+      for (int j = 0; j < n; ++j) {
+        lo[j] = std::min(lo[j], set.point(i)[j]);
+        hi[j] = std::max(hi[j], set.point(i)[j]);
+      }
+    double fraction = 1.0;
+    for (int j = 0; j < n; ++j) fraction *= (hi[j] - lo[j]) / set.domain.side;
+    if (!(fraction < 0.9)) return {};
+    return fmt::format("{} has no sidecar and its points span {:.0f}% of the volume of {}, where they are measured; give "
+                       "--domain and --domain-side if they live elsewhere",
+                       dfvn::quote_for_message(input_name(input), dfvn::kMaxPathEchoChars), 100.0 * fraction,
+                       set.domain.describe(n));
+  }
+
   void run() {
+    if (periodic && !domain.empty() && domain != "torus")
+      fail("--periodic measures on the torus; it contradicts --domain " + domain);
     if (std::count(inputs.begin(), inputs.end(), std::string(kStandardInput)) > 1)
       fail("standard input ('-') can be read once; it is named twice among the inputs");
     if (format.empty() && std::find(inputs.begin(), inputs.end(), kStandardInput) != inputs.end())
@@ -150,7 +209,8 @@ struct StatsCommand : Subcommand {
     }
     std::vector<dfvn::PointSet> sets;
     std::vector<std::size_t> owner;  // the input of each set
-    for (std::size_t i = 0; i < inputs.size(); ++i) read_input(i, input_formats[i], sets, owner);
+    std::vector<std::string> warnings;  // printed once the run has succeeded (an error stays one line)
+    for (std::size_t i = 0; i < inputs.size(); ++i) read_input(i, input_formats[i], sets, owner, warnings);
     for (std::size_t s = 1; s < sets.size(); ++s)
       if (!spectrum_prefix.empty() && sets[s].dimension != sets.front().dimension)
         fail(fmt::format("--spectrum averages sets of one dimension; '{}' holds {}D points, '{}' {}D", inputs[owner.front()],
@@ -175,7 +235,6 @@ struct StatsCommand : Subcommand {
     options.discrepancy = discrepancy;
     options.knn = dfvn::parse_knn_backend(knn);
     options.threads = common.threads;
-    options.periodic = periodic;
     double mean_count = 0.0;
     for (const dfvn::PointSet& set : sets) mean_count += static_cast<double>(set.size()) / static_cast<double>(sets.size());
     const int spectrum_k = spectrum_frequency > 0 ? spectrum_frequency
@@ -196,7 +255,6 @@ struct StatsCommand : Subcommand {
     std::vector<std::string> rows;
     dfvn::PointStatisticsRun run{inputs.front(), std::string(dfvn::to_string(input_formats.front())), domain_side, options, {}, {},
                                  !no_timing};
-    rdf.periodic = periodic;
     for (std::size_t s = 0, in_input = 0; s < sets.size(); ++s, ++in_input) {
       if (s > 0 && owner[s] != owner[s - 1]) in_input = 0;  // sets are numbered within their input
       const std::string& input = inputs[owner[s]];
@@ -233,6 +291,7 @@ struct StatsCommand : Subcommand {
                                  [](const std::string& line) { std::fprintf(stderr, "%s: %s\n", kProgram, line.c_str()); });
     }
     reporter->complete();
+    for (const std::string& warning : warnings) std::fprintf(stderr, "%s: warning: %s\n", kProgram, warning.c_str());
     if (!json_path.empty()) dfvn::write_file_atomically(json_path, dfvn::point_statistics_json(run));
     if (!rdf_path.empty()) dfvn::write_file_atomically(rdf_path, rdf_csv);
     dfvn::write_file_atomically(output, csv);
@@ -247,11 +306,13 @@ struct StatsCommand : Subcommand {
     for (std::size_t s = 0; s < sets.size(); ++s) {
       const int n = sets[s].dimension;
       if (n < 2) fail(fmt::format("--rdf needs 2D..8D points; '{}' holds {}D points", inputs[owner[s]], n));
-      if (periodic && rdf.r_max >= 0.5 * domain_side)
-        fail(fmt::format("--rdf-max {:g} with --periodic must be below half the side ({:g})", rdf.r_max, 0.5 * domain_side));
+      const dfvn::Domain& d = sets[s].domain;
+      if (d.kind == dfvn::DomainKind::sphere) fail("--rdf is for points in a torus, cube or ball, not on the sphere");
+      if (d.periodic() && rdf.r_max >= 0.5 * d.side)
+        fail(fmt::format("--rdf-max {:g} on the torus must be below half its side ({:g})", rdf.r_max, 0.5 * d.side));
       if (rdf.r_max > 0.0) {
         try {
-          dfvn::check_rdf_resolution(n, domain_side, std::min(rdf.r_max, 0.999 * domain_side), rdf.bins);
+          dfvn::check_rdf_resolution(n, d.side, std::min(rdf.r_max, 0.999 * d.side), rdf.bins);
         } catch (const std::invalid_argument&) {
           fail(fmt::format("--rdf-max {:g} with --rdf-bins {} gives bins {:.3g} wide, too narrow for a finite g(r) in {}D; raise "
                            "--rdf-max or lower --rdf-bins",

@@ -152,7 +152,7 @@ DFVN_BENCH_ALL_DIMENSIONS(BM_Rk4GaussNewtonStep, ->DenseRange(0, kLastBasis));
 void BM_CnjPaper7D(benchmark::State& state) {
   const LatticeSpec lattice{7, 6, Protocol::paper};
   CnjOptions options;
-  options.domain = CnjDomain::cube;
+  options.domain = DomainKind::cube;
   options.domain_mode = DomainMode::drop;
   for (auto _ : state) benchmark::DoNotOptimize(curl_noise_jitter(lattice, options, 1, 0));
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(lattice.point_count()));
@@ -172,7 +172,7 @@ BENCHMARK(BM_CnjTorus7D)->Unit(benchmark::kMillisecond)->UseRealTime();
 void BM_CnjConformant7D(benchmark::State& state) {
   const LatticeSpec lattice{7, 6, Protocol::paper};
   CnjOptions options;
-  options.domain = CnjDomain::cube;
+  options.domain = DomainKind::cube;
   for (auto _ : state) benchmark::DoNotOptimize(curl_noise_jitter(lattice, options, 1, 0));
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(lattice.point_count()));
 }
@@ -187,9 +187,9 @@ template <int N>
 void BM_CnjSameLattice(benchmark::State& state) {
   const int grid = static_cast<int>(state.range(0));
   CnjOptions options;
-  options.domain = CnjDomain::cube;
+  options.domain = DomainKind::cube;
   options.domain_mode = state.range(1) == 0 ? DomainMode::conformant : DomainMode::drop;
-  const LatticeSpec lattice{N, grid, Protocol::unit};
+  const LatticeSpec lattice{N, grid, Protocol::fair};
   for (auto _ : state) benchmark::DoNotOptimize(curl_noise_jitter(lattice, options, 1, 1));
 }
 template <int N>

@@ -38,6 +38,7 @@ set(DFVN_PUBLIC_HEADERS
     animate/animation.hpp
     core/bulk_memory.hpp
     core/dimension.hpp
+    core/domain.hpp
     core/image.hpp
     core/point_set.hpp
     core/progress.hpp
@@ -65,6 +66,7 @@ set(DFVN_PUBLIC_HEADERS
     io/png.hpp
     io/point_file.hpp
     io/point_reader.hpp
+    io/point_sidecar.hpp
     io/utk_bin.hpp
     noise/gradient_noise.hpp
     noise/noise_domain.hpp

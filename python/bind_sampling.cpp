@@ -62,9 +62,11 @@ SampleConfig sample_config(const SampleArguments& a) {
   }
   config.seed = a.seed;
   config.threads = a.threads;
-  config.protocol = parse_protocol(a.protocol);
+  // "unit" (the engines' default): the fair protocol's lattice in the unit cube or torus, as below.
+  const Protocol protocol = parse_protocol(a.protocol == "unit" ? "fair" : a.protocol);
   config.scramble = a.scramble ? Scramble::owen : Scramble::none;
-  config.pds_radius = a.radius;
+  // "unit": Poisson disk at radius 1/K unless given, as the engines have always had it.
+  config.pds_radius = a.radius == 0.0 && a.protocol == "unit" ? 1.0 / config.grid : a.radius;
   config.pds_candidates = a.ncandidates;
   config.cnj.noise = parse_noise_basis(a.noise);
   config.cnj.frequency = a.cycles_per_spacing;
@@ -86,15 +88,19 @@ SampleConfig sample_config(const SampleArguments& a) {
                           " needs field 'dfvn'");
   config.cnj.trace.steps = a.steps;
   config.cnj.domain_mode = parse_domain_mode(a.domain_mode);
-  // As on the command line: without a domain, drop mode or a bound put CNJ in the cube.
-  const bool asks_for_a_boundary = config.cnj.domain_mode == DomainMode::drop || a.bound.has_value();
-  config.cnj.domain = a.domain ? parse_cnj_domain(*a.domain) : (asks_for_a_boundary ? CnjDomain::cube : kDefaultCnjDomain);
+  // As on the command line: without a domain, drop mode or a bound put the set in the cube; so does
+  // Poisson disk sampling, which the engines run in the cube as scipy.stats.qmc.PoissonDisk does.
+  const bool asks_for_a_boundary =
+      config.cnj.domain_mode == DomainMode::drop || a.bound.has_value() || a.method == "pds" || protocol == Protocol::paper;
+  config.cnj.domain = a.domain ? parse_domain_kind(*a.domain) : (asks_for_a_boundary ? DomainKind::cube : kDefaultDomainKind);
+  if (config.cnj.domain == DomainKind::sphere) throw py::value_error("domain 'sphere' is not a sampler's domain here");
   if (a.bound) {
-    if (config.cnj.domain == CnjDomain::torus || config.cnj.domain_mode == DomainMode::drop)
+    if (config.cnj.domain == DomainKind::torus || config.cnj.domain_mode == DomainMode::drop)
       throw py::value_error("bound applies to conformant cnj in domain 'cube' or 'ball'");
     config.cnj.bound = parse_bound(*a.bound);
   }
   config.max_memory_gib = a.max_memory_gib;
+  config.use_protocol(protocol);
   return config;
 }
 

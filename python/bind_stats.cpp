@@ -21,18 +21,18 @@ namespace {
 // The library's statistics take an owning PointSet: the points are copied once, O(n N) next to the
 // O(n log n) KD-tree work that follows. Throws std::invalid_argument for a side outside [2^-1000, 2^1000]
 // (stats/distance_scale.hpp) or a point outside [0, side]^N.
-PointSet point_set(const PointRows& in, double domain_side) {
+PointSet point_set(const PointRows& in, double domain_side, bool periodic) {
   check_domain_side(domain_side, "domain_side");
-  PointSet points{in.dimension, Coordinates(in.data, in.data + in.rows * in.dimension), Box{0.0, domain_side}};
+  PointSet points{in.dimension, Coordinates(in.data, in.data + in.rows * in.dimension),
+                  Domain{periodic ? DomainKind::torus : DomainKind::cube, 0.0, domain_side}};
   check_point_set(points);
   return points;
 }
 
 py::dict nn_stats(const PointArray& array, double domain_side, const std::string& knn, bool periodic, int threads) {
-  const PointSet points = point_set(point_rows(array, 1, kMaxDimension, 2), domain_side);
+  const PointSet points = point_set(point_rows(array, 1, kMaxDimension, 2), domain_side, periodic);
   PointSetStatisticsOptions options;
   options.knn = parse_knn_backend(knn);
-  options.periodic = periodic;
   options.threads = threads;
   NearestNeighbourSummary s;
   {
@@ -51,12 +51,11 @@ py::dict nn_stats(const PointArray& array, double domain_side, const std::string
 
 py::tuple rdf(const PointArray& array, double domain_side, double r_max, int bins, std::uint64_t max_queries,
               std::uint64_t seed, bool periodic, int threads) {
-  const PointSet points = point_set(point_rows(array, kMinDimension, kMaxDimension, 2), domain_side);
+  const PointSet points = point_set(point_rows(array, kMinDimension, kMaxDimension, 2), domain_side, periodic);
   RdfOptions options;
   options.r_max = r_max;
   options.bins = bins;
   options.max_queries = max_queries;
-  options.periodic = periodic;
   options.validate();
   RdfCurve curve;
   {

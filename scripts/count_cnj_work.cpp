@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
     // The library's own CNJ of the first `points` lattice rows, on one thread: on the torus (the main job's
     // default: the periodic basis, the free field's steps) or in the cube, conformant (the bounded field,
     // one step, traces that end outside retraced with more steps).
-    options.domain = mode == "torus" ? dfvn::CnjDomain::torus : dfvn::CnjDomain::cube;
+    options.domain = mode == "torus" ? dfvn::DomainKind::torus : dfvn::DomainKind::cube;
     options.domain_mode = dfvn::DomainMode::conformant;
     const dfvn::CnjResult r = dfvn::curl_noise_jitter_range(lattice, options, 1, 0, static_cast<std::uint64_t>(points), 1);
     stats = r.trace_stats;

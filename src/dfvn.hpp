@@ -9,6 +9,7 @@
 
 #include "dfvn/core/bulk_memory.hpp"
 #include "dfvn/core/dimension.hpp"
+#include "dfvn/core/domain.hpp"
 #include "dfvn/core/image.hpp"
 #include "dfvn/core/point_set.hpp"
 #include "dfvn/core/progress.hpp"
@@ -40,6 +41,7 @@
 #include "dfvn/io/png.hpp"
 #include "dfvn/io/point_file.hpp"
 #include "dfvn/io/point_reader.hpp"
+#include "dfvn/io/point_sidecar.hpp"
 #include "dfvn/io/utk_bin.hpp"
 
 #include "dfvn/noise/gradient_noise.hpp"

@@ -53,7 +53,7 @@ void AnimationOptions::validate() const {
   parse_start_lattice(to_string(lattice));
   if (drop_margin < 0 || drop_margin > kMaxDropMargin)
     throw std::invalid_argument(fmt::format("drop margin must be in [0, {}] lattice spacings, got {}", kMaxDropMargin, drop_margin));
-  if (cnj.domain == CnjDomain::torus)
+  if (cnj.domain == DomainKind::torus)
     throw std::invalid_argument("animate needs a domain with a boundary: cube or ball (the torus has none to keep points in)");
   if (cnj.field != FieldKind::dfvn) throw std::invalid_argument("animate traces along the DFVN field (--field dfvn)");
   cnj.validate();
@@ -73,8 +73,8 @@ int animation_frame_steps(const AnimationOptions& options) {
 std::vector<double> animation_start_sites(const AnimationOptions& options) {
   const int n = options.dimension, k = options.grid, pad = pad_spacings(options);
   const double h = 1.0 / k;
-  const bool ball = options.cnj.domain == CnjDomain::ball;
-  const Box domain{0.0, 1.0, ball};
+  const bool ball = options.cnj.domain == DomainKind::ball;
+  const Domain domain = Domain::unit(ball ? DomainKind::ball : DomainKind::cube);
   const bool drop = options.cnj.domain_mode == DomainMode::drop;
   std::vector<double> sites;
   std::vector<double> x(static_cast<std::size_t>(n));
@@ -123,12 +123,12 @@ AnimationResult run_animation(const AnimationOptions& options, std::uint64_t see
   result.seed = seed;
   const CnjOptions& cnj = options.cnj;
   const bool conformant = cnj.domain_mode == DomainMode::conformant;
-  const bool ball = cnj.domain == CnjDomain::ball;
+  const bool ball = cnj.domain == DomainKind::ball;
   result.spacing = 1.0 / options.grid;
   result.trace_time = cnj.step_scale * average_neighbour_distance(N) * result.spacing;
   result.frame_time = options.phase_step * result.trace_time;
   result.frame_steps = animation_frame_steps(options);
-  const Box domain{0.0, 1.0, ball};
+  const Domain domain = Domain::unit(ball ? DomainKind::ball : DomainKind::cube);
   // CNJ's field for this lattice (the torus and other field kinds are refused by validate()), turned to a phase.
   const FieldOptions field_options = cnj_field_options(cnj, result.spacing);
   const auto field_at = [&](double phase) {

@@ -65,7 +65,7 @@ struct AnimationOptions {
 
   static CnjOptions default_cnj() {
     CnjOptions cnj;
-    cnj.domain = CnjDomain::cube;
+    cnj.domain = DomainKind::cube;
     return cnj;
   }
   void validate() const;  // throws std::invalid_argument naming the option

@@ -93,52 +93,39 @@ std::vector<double> sampling_stage_weights(const SampleConfig& config) {
 MethodPlan plan_method(const SampleConfig& config, Method method) {
   const LatticeSpec lattice = config.lattice();
   const std::uint64_t lattice_points = lattice.point_count();
-  MethodPlan plan{method, lattice_points, Box{0.0, 1.0}, 0.0};
-  const bool paper = config.protocol == Protocol::paper;
-  // paper: PDS and Sobol live on [0, delta K]^N, the box a 0.1-spaced K^N lattice would fill
-  // (data/PROTOCOL.md): the unit cube for K = 10, [0, 0.7]^6 and [0, 0.6]^7 in Table 1.
-  const Box paper_box{0.0, kPaperDelta * config.grid};
+  const DomainKind kind = config.domain();
+  MethodPlan plan{method, lattice_points, Domain::unit(kind), 0.0};
   // The ball's and the sphere's counts are counted site by site up to kExactCountLimit lattice points
   // (about a second); beyond, where the memory check refuses the run on any usual machine, they are
   // estimated from the volume fraction (ball) or area / h^(N-1) (sphere), so that validating a huge
   // --grid never loops over it.
   constexpr std::uint64_t kExactCountLimit = std::uint64_t{1} << 27;
   const bool exact = lattice_points <= kExactCountLimit;
-  if (config.on == Surface::sphere) {  // cnj and random, at the count of the sphere's start set
-    plan.requested = exact ? sphere_start_set(config.dimension, config.grid).size()
-                           : static_cast<std::uint64_t>(sphere_area(config.dimension) /
-                                                        std::pow(sphere_start_spacing(config.grid), config.dimension - 1));
-    plan.domain = Box{-1.0, 2.0};
-    return plan;
-  }
-  switch (method) {
-    case Method::cnj:
-      if (config.cnj.domain == CnjDomain::ball) {
-        plan.domain.inscribed_ball = true;
-        plan.requested = exact ? cnj_start_count(lattice, CnjDomain::ball)
-                               : static_cast<std::uint64_t>(static_cast<double>(lattice_points) *
-                                                            plan.domain.volume(config.dimension));
-      }
-      break;
-    case Method::jitter:
-    case Method::jitter_matched:
-    case Method::random:
-      break;
-    case Method::pds:
-      plan.domain = paper ? paper_box : Box{0.0, 1.0};
-      plan.pds_radius = config.pds_radius > 0.0 ? config.pds_radius : (paper ? kPaperDelta : 1.0 / config.grid);
-      break;
-    case Method::sobol:
-      plan.domain = paper ? paper_box : Box{0.0, 1.0};
-      if (paper && config.count == 0) {  // SciPy's count: 2^round(log2(K^N))
-        const int exponent = static_cast<int>(std::lround(std::log2(static_cast<double>(lattice_points))));
-        plan.requested = std::uint64_t{1} << std::min(exponent, 32);
-      }
-      break;
-    case Method::halton:
-    case Method::lhs:  // the alternatives to Sobol a user would pick: Sobol's domain, the lattice's count
-      plan.domain = paper ? paper_box : Box{0.0, 1.0};
-      break;
+  if (config.protocol == Protocol::paper) {
+    // Section 5.1 (data/PROTOCOL.md), in the cube: the lattice methods on the paper's lattice, measured in
+    // the box its cells fill; PDS and Sobol (and the other sequences, the alternatives a user would pick)
+    // on [0, delta K]^N, the box a 0.1-spaced K^N lattice would fill: the unit cube for K = 10, [0, 0.7]^6
+    // and [0, 0.6]^7 in Table 1, where the same count is (0.15 / 0.1)^6 = 11.4 and (0.18 / 0.1)^7 = 61
+    // times denser than the lattice methods' (the paper's densities; table1.md names it).
+    const Box paper_box{0.0, kPaperDelta * config.grid};
+    plan.domain = is_lattice_method(method) ? Domain(lattice.cells()) : Domain(paper_box);
+    if (method == Method::pds) plan.pds_radius = config.pds_radius > 0.0 ? config.pds_radius : kPaperDelta;
+    if (method == Method::sobol && config.count == 0) {  // SciPy's count: 2^round(log2(K^N))
+      const int exponent = static_cast<int>(std::lround(std::log2(static_cast<double>(lattice_points))));
+      plan.requested = std::uint64_t{1} << std::min(exponent, 32);
+    }
+  } else {
+    // Fair: every method in the run's unit domain at the count of the lattice's sites in it.
+    if (kind == DomainKind::sphere) {
+      plan.requested = exact ? sphere_start_set(config.dimension, config.grid).size()
+                             : static_cast<std::uint64_t>(sphere_area(config.dimension) /
+                                                          std::pow(sphere_start_spacing(config.grid), config.dimension - 1));
+    } else if (kind == DomainKind::ball) {
+      plan.requested = exact ? cnj_start_count(lattice, DomainKind::ball)
+                             : static_cast<std::uint64_t>(static_cast<double>(lattice_points) *
+                                                          plan.domain.measure(config.dimension));
+    }
+    if (method == Method::pds) plan.pds_radius = config.pds_radius;  // 0: the largest that reaches the count
   }
   // -n: every method that is not a lattice makes exactly the count asked for.
   if (config.count > 0 && !is_lattice_method(method)) plan.requested = config.count;
@@ -165,6 +152,14 @@ double memory_limit_bytes(const SampleConfig& config) {
   return config.max_memory_gib > 0.0 ? config.max_memory_gib * double(1ULL << 30) : 0.8 * physical_memory_bytes();
 }
 
+void SampleConfig::use_protocol(Protocol chosen) {
+  protocol = chosen;
+  if (chosen != Protocol::paper) return;
+  cnj.domain = DomainKind::cube;
+  cnj.domain_mode = DomainMode::drop;
+  if (cnj.trace.steps == CnjOptions::kStepsByDomainMode) cnj.trace.steps = 1;
+}
+
 void SampleConfig::validate() const {
   if (dimension < kMinDimension || dimension > kMaxDimension)
     throw std::invalid_argument(fmt::format("--dim must be in {}..{}, got {}", kMinDimension, kMaxDimension, dimension));
@@ -183,19 +178,29 @@ void SampleConfig::validate() const {
           "noise's [2^-50, 2^50]",
           cnj.frequency, grid, field_frequency));
   }
-  if (on == Surface::sphere) {
-    if (dimension < 3) throw std::invalid_argument(fmt::format("--on sphere needs --dim 3..8, got {}", dimension));
+  const DomainKind kind = domain();
+  if (protocol == Protocol::paper) {
+    if (kind != DomainKind::cube)
+      throw std::invalid_argument(fmt::format("--protocol paper is Section 5.1, in the cube: --domain {} needs --protocol fair",
+                                              to_string(kind)));
+    if (has_cnj && cnj.domain_mode != DomainMode::drop)
+      throw std::invalid_argument("--protocol paper drops the CNJ points that leave the cube (--domain-mode drop); "
+                                  "conformant CNJ needs --protocol fair");
+  }
+  if (kind == DomainKind::sphere) {
+    if (dimension < 3) throw std::invalid_argument(fmt::format("--domain sphere needs --dim 3..8, got {}", dimension));
     for (Method m : methods)
       if (m != Method::cnj && m != Method::random)
-        throw std::invalid_argument(fmt::format("--on sphere takes --methods cnj and random, not {}", to_string(m)));
-    if (compute_rdf) throw std::invalid_argument("--rdf is for points in a cube, not --on sphere");
-  } else if (periodic_statistics && has_cnj && cnj.domain == CnjDomain::ball) {
-    throw std::invalid_argument("--periodic measures on the torus of a cube, not --domain ball");
-  } else if (compute_rdf && has_cnj && cnj.domain == CnjDomain::ball) {
-    throw std::invalid_argument("--rdf's edge correction is for cubes, not --domain ball");
+        throw std::invalid_argument(fmt::format("--domain sphere takes --methods cnj and random, not {}", to_string(m)));
+    if (compute_rdf) throw std::invalid_argument("--rdf is for points in a torus, cube or ball, not --domain sphere");
   }
-  if (std::find(methods.begin(), methods.end(), Method::jitter_matched) != methods.end() && cnj.domain == CnjDomain::ball)
-    throw std::invalid_argument("jitter-matched jitters a K^N lattice: it needs --domain torus or cube, not ball");
+  if (kind == DomainKind::ball)
+    for (Method m : methods)
+      if (m == Method::jitter_matched || m == Method::lhs)
+        throw std::invalid_argument(fmt::format(
+            "{} in the ball: {} (--domain torus or cube)", to_string(m),
+            m == Method::lhs ? "a Latin hypercube stratifies the cube's axes, which the ball cuts"
+                             : "jitter-matched reflects at the cube's faces to match CNJ's displacement"));
   if (!std::isfinite(pds_radius) || pds_radius < 0.0) throw std::invalid_argument("--pds-radius must be a finite number > 0");
   if (pds_candidates < 1) throw std::invalid_argument("--pds-candidates must be at least 1");
   if (!std::isfinite(max_memory_gib) || max_memory_gib < 0.0) throw std::invalid_argument("--max-memory must be >= 0");
@@ -210,9 +215,7 @@ void SampleConfig::validate() const {
   }
   for (Method m : methods) {
     const MethodPlan plan = plan_method(*this, m);
-    if (m == Method::sobol && plan.requested > (std::uint64_t{1} << 32))
-      throw std::invalid_argument("Sobol supports at most 2^32 points");
-    if (compute_rdf && periodic_statistics && rdf.r_max >= 0.5 * plan.domain.side)
+    if (compute_rdf && periodic_statistics() && rdf.r_max >= 0.5 * plan.domain.side)
       throw std::invalid_argument(fmt::format("--rdf-max {:g} with --periodic must be below half the {} set's side ({:g})",
                                               rdf.r_max, to_string(m), 0.5 * plan.domain.side));
     if (compute_rdf && rdf.r_max > 0.0) {
@@ -225,7 +228,7 @@ void SampleConfig::validate() const {
             rdf.r_max, rdf.bins, rdf.r_max / rdf.bins, dimension));
       }
     }
-    if (m == Method::pds) {
+    if (m == Method::pds && plan.pds_radius > 0.0) {
       PoissonDiskOptions o;
       o.radius = plan.pds_radius;
       o.domain = plan.domain;
@@ -235,6 +238,11 @@ void SampleConfig::validate() const {
   // An absurd --max-memory makes the limit Inf: then nothing is refused here, and an allocation that
   // fails is reported by run_sampling.
   const double limit = memory_limit_bytes(*this);
+  const auto check_sobol_count = [&] {  // after the memory, which says more about a huge run
+    for (Method m : methods)
+      if (m == Method::sobol && plan_method(*this, m).requested > (std::uint64_t{1} << 32))
+        throw std::invalid_argument("Sobol supports at most 2^32 points");
+  };
   if (stream) {
     if (const std::string why = stream_refusal(*this); !why.empty()) throw std::invalid_argument(why);
     const int slabs = stream_slab_count(*this, stream_slabs);
@@ -242,9 +250,11 @@ void SampleConfig::validate() const {
     if (need > limit)
       throw std::invalid_argument(fmt::format("--stream: a slab with its halo needs about {} of memory (limit {}); {}",
                                               byte_size(need), byte_size(limit), streamed_memory_advice(*this, slabs, limit)));
+    check_sobol_count();
     return;
   }
   const double need = estimated_peak_bytes(*this);
+  if (need <= limit) check_sobol_count();
   if (need > limit) {
     // Name the option the user gave: with -n the lattice's K was derived from the count.
     std::uint64_t largest = 0;
@@ -260,6 +270,28 @@ void SampleConfig::validate() const {
 
 namespace {
 
+// The first `count` points of a sequence (make(m): its first m points in the cube) that lie in `domain`,
+// in the sequence's order: the ball's points by rejection from the cube's, so that the sequence keeps its
+// order and a longer run extends a shorter one. Other domains: make(count) as it is.
+PointSet first_in_domain(const std::function<PointSet(std::uint64_t)>& make, const Domain& domain, std::uint64_t count,
+                         int dimension) {
+  if (domain.kind != DomainKind::ball) return make(count);
+  const double fraction = domain.measure(dimension) / domain.box().volume(dimension);
+  auto asked = static_cast<std::uint64_t>(std::ceil(1.2 * static_cast<double>(count) / fraction)) + 64;
+  for (;;) {
+    const PointSet all = make(asked);
+    PointSet inside{dimension, Coordinates(static_cast<std::size_t>(count) * dimension), domain};
+    std::uint64_t kept = 0;
+    for (std::size_t i = 0; i < all.size() && kept < count; ++i)
+      if (domain.contains(all.point(i), dimension)) {
+        std::copy(all.point(i), all.point(i) + dimension, inside.coordinates.data() + kept * dimension);
+        ++kept;
+      }
+    if (kept == count) return inside;
+    asked *= 2;
+  }
+}
+
 PointSet generate_points(const SampleConfig& config, const MethodPlan& plan, MethodResult& result,
                          SamplingContext& context, const StageProgress& progress) {
   const LatticeSpec lattice = config.lattice();
@@ -268,18 +300,19 @@ PointSet generate_points(const SampleConfig& config, const MethodPlan& plan, Met
     if (progress) progress(stage, f);
   };
   GenerationFacts& facts = result.facts;
+  const Domain& domain = plan.domain;
+  const int n = config.dimension;
   switch (plan.method) {
     case Method::cnj: {
-      if (config.on == Surface::sphere) {
-        SphereCnjResult r = sphere_curl_noise_jitter(config.dimension, config.grid, config.cnj, config.seed,
-                                                     config.threads, report);
+      if (domain.kind == DomainKind::sphere) {
+        SphereCnjResult r = sphere_curl_noise_jitter(n, config.grid, config.cnj, config.seed, config.threads, report);
         facts.frequency = config.cnj.frequency;
         facts.field_frequency = r.field_frequency;
         facts.trace_time = r.trace_time;
         facts.skipped_updates = r.trace_stats.skipped_updates;
         facts.retraced = r.retraced;
         facts.kept_at_site = r.kept_at_site;
-        result.notes = fmt::format("{} noise; on the sphere; geodesic distances", to_string(config.cnj.noise));
+        result.notes = fmt::format("{} noise", to_string(config.cnj.noise));
         return std::move(r.points);
       }
       CnjResult r = curl_noise_jitter(lattice, config.cnj, config.seed, config.threads, report);
@@ -291,19 +324,21 @@ PointSet generate_points(const SampleConfig& config, const MethodPlan& plan, Met
       facts.skipped_updates = r.trace_stats.skipped_updates;
       facts.retraced = r.retraced;
       facts.kept_at_site = r.kept_at_site;
-      result.notes = fmt::format("{} noise; {} domain; {}", to_string(config.cnj.noise), to_string(config.cnj.domain),
-                                 to_string(config.cnj.domain_mode));
+      result.notes = fmt::format("{} noise; {}", to_string(config.cnj.noise), to_string(config.cnj.domain_mode));
       if (config.cnj.field == FieldKind::curl) result.notes += "; curl noise field, no reprojection";
-      if (config.cnj.domain != CnjDomain::ball)  // the ball's clipped lattice has no K^N neighbour structure
-        result.displacement = summarize_lattice_displacements(config.dimension, config.grid,
-                                                              cnj_lattice(lattice, config.cnj.domain).spacing(),
+      if (config.cnj.domain != DomainKind::ball)  // the ball's clipped lattice has no K^N neighbour structure
+        result.displacement = summarize_lattice_displacements(n, config.grid, cnj_lattice(lattice, config.cnj.domain).spacing(),
                                                               r.displacements, {}, config.threads);
       return std::move(r.points);
     }
     case Method::jitter: {
       facts.half_width = jitter_half_width(lattice);
+      if (domain.kind == DomainKind::ball) {
+        result.notes = "the sites in the ball; an offset leaving it drawn again";
+        return jittered_sites_in_ball(lattice, config.seed, config.threads);
+      }
       PointSet points = jittered_lattice(lattice, config.seed, config.threads);
-      result.displacement = summarize_lattice_displacements(config.dimension, config.grid, lattice.spacing(),
+      result.displacement = summarize_lattice_displacements(n, config.grid, lattice.spacing(),
                                                             lattice_displacements(lattice, points), {}, config.threads);
       return points;
     }
@@ -311,7 +346,7 @@ PointSet generate_points(const SampleConfig& config, const MethodPlan& plan, Met
       if (!context.cnj_rms_displacement)  // CNJ has not run: its displacements, without its points
         context.cnj_rms_displacement =
             curl_noise_jitter(lattice, config.cnj, config.seed, config.threads).rms_displacement;
-      const bool torus = config.cnj.domain == CnjDomain::torus;
+      const bool torus = config.cnj.domain == DomainKind::torus;
       const LatticeSpec cnj_sites = cnj_lattice(lattice, config.cnj.domain);
       MatchedJitter j = jitter_matching_rms(cnj_sites, *context.cnj_rms_displacement,
                                             torus ? JitterBoundary::wrap : JitterBoundary::reflect, config.seed,
@@ -319,36 +354,44 @@ PointSet generate_points(const SampleConfig& config, const MethodPlan& plan, Met
       facts.half_width = j.half_width;
       result.notes = fmt::format("CNJ's RMS displacement; {}", torus ? "wrapped on the torus" : "reflected at the faces");
       result.displacement =
-          summarize_lattice_displacements(config.dimension, config.grid, cnj_sites.spacing(), j.displacements, {}, config.threads);
+          summarize_lattice_displacements(n, config.grid, cnj_sites.spacing(), j.displacements, {}, config.threads);
       return std::move(j.points);
     }
     case Method::random:
-      if (config.on == Surface::sphere) {
-        result.notes = "on the sphere; geodesic distances";
-        return uniform_points_on_sphere(config.dimension, plan.requested, config.seed, config.threads);
-      }
-      return uniform_random_points(config.dimension, plan.requested, plan.domain, config.seed, config.threads);
+      if (domain.kind == DomainKind::sphere) return uniform_points_on_sphere(n, plan.requested, config.seed, config.threads);
+      return first_in_domain(
+          [&](std::uint64_t m) { return uniform_random_points(n, m, domain.box(), config.seed, config.threads); }, domain,
+          plan.requested, n);
     case Method::pds: {
       PoissonDiskOptions o;
       o.radius = plan.pds_radius;
       o.candidates = config.pds_candidates;
       o.max_points = plan.requested;
-      o.domain = plan.domain;
-      PoissonDiskResult r = poisson_disk(config.dimension, o, config.seed, config.threads, report);
-      facts.radius = plan.pds_radius;
+      o.domain = domain;
+      PoissonDiskResult r = plan.pds_radius > 0.0 ? poisson_disk(n, o, config.seed, config.threads, report)
+                                                  : poisson_disk_reaching(n, o, config.seed, config.threads, report);
+      facts.radius = r.radius;
       facts.saturated = !r.reached_max_points;
-      result.notes = r.reached_max_points ? "stopped at the requested count" : "saturated (active list empty)";
+      result.notes = plan.pds_radius > 0.0
+                         ? (r.reached_max_points ? "stopped at the requested count" : "saturated (active list empty)")
+                         : fmt::format("the largest radius found to reach the count ({} run{})", r.runs,
+                                       r.runs == 1 ? "" : "s");
       return std::move(r.points);
     }
     case Method::sobol:
       result.notes = fmt::format("{} scrambling", to_string(config.scramble));
-      return sobol_points(config.dimension, plan.requested, plan.domain, config.scramble, config.seed, config.threads);
+      return first_in_domain(
+          [&](std::uint64_t m) { return sobol_points(n, m, domain.box(), config.scramble, config.seed, config.threads); },
+          domain, plan.requested, n);
     case Method::halton:
       result.notes = config.scramble == Scramble::owen ? "digit-permutation scrambling" : "no scrambling";
-      return halton_points(config.dimension, plan.requested, plan.domain, config.scramble == Scramble::owen, config.seed,
-                           config.threads);
+      return first_in_domain(
+          [&](std::uint64_t m) {
+            return halton_points(n, m, domain.box(), config.scramble == Scramble::owen, config.seed, config.threads);
+          },
+          domain, plan.requested, n);
     case Method::lhs:
-      return latin_hypercube_points(config.dimension, plan.requested, plan.domain, config.seed, config.threads);
+      return latin_hypercube_points(n, plan.requested, domain.box(), config.seed, config.threads);
   }
   throw std::logic_error("unknown method");
 }
@@ -358,6 +401,9 @@ PointSet generate_points(const SampleConfig& config, const MethodPlan& plan, Met
 void generate_points(const SampleConfig& config, MethodResult& result, SamplingContext& context,
                      const StageProgress& progress) {
   result.points = generate_points(config, result.plan, result, context, progress);
+  // Every set lives where its plan says, whatever box its generator filled (the torus' points are in
+  // [0,1)^N; the paper's lattice sets in the box their cells fill), and is measured there.
+  result.points.domain = result.plan.domain;
   result.point_count = result.points.size();
 }
 
@@ -402,15 +448,9 @@ MethodResult run_method(const SampleConfig& config, const MethodPlan& plan, bool
   };
   report_statistics(0.0);
   stopwatch.restart();
-  if (config.on == Surface::sphere)  // great-circle distances
-    result.nearest = summarize_geodesic_nearest_neighbours(
-        geodesic_nearest_neighbour_distances(result.points, config.knn, config.threads), config.dimension);
-  else if (config.periodic_statistics)  // minimum-image distances on the torus of the set's box
-    result.nearest = summarize_nearest_neighbours(
-        periodic_nearest_neighbour_distances(result.points, config.threads, report_statistics), result.points);
-  else
-    result.nearest = summarize_nearest_neighbours(
-        nearest_neighbour_distances(result.points, config.knn, config.threads, report_statistics), result.points);
+  // In the set's domain: great-circle angles on the sphere, minimum-image distances on the torus.
+  result.nearest = summarize_nearest_neighbours(
+      nearest_neighbour_distances_in_domain(result.points, config.knn, config.threads, report_statistics), result.points);
   result.measured = true;
   result.seconds_stats = stopwatch.seconds();
   if (config.compute_rdf) {
@@ -419,9 +459,7 @@ MethodResult run_method(const SampleConfig& config, const MethodPlan& plan, bool
       if (progress) progress(rdf_stage, f);
     };
     report_rdf(0.0);
-    RdfOptions rdf = config.rdf;
-    rdf.periodic = config.periodic_statistics;
-    result.rdf = radial_distribution(result.points, rdf, config.seed, config.threads, report_rdf);
+    result.rdf = radial_distribution(result.points, config.rdf, config.seed, config.threads, report_rdf);
   }
   if (on_result) on_result(result);
   if (!keep_points) result.points = PointSet{result.points.dimension, {}, result.points.domain};
@@ -467,7 +505,7 @@ std::vector<MethodResult> run_sampling(const SampleConfig& config, bool keep_poi
 std::string stats_csv_header() {
   return "dim,grid,method,points,nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,"
          "median_displacement,frac_unmoved,neighbour_disorder,lattice_order,seconds_generate,seconds_stats,seed,"
-         "protocol,domain_side,requested,cycles_per_spacing,field_frequency,trace_time,dropped,skipped_updates,retraced,kept_at_site,"
+         "protocol,domain,domain_side,requested,cycles_per_spacing,field_frequency,trace_time,dropped,skipped_updates,retraced,kept_at_site,"
          "half_width,radius,saturated,notes,stat\n";
 }
 
@@ -493,10 +531,11 @@ std::string stats_csv_row(const SampleConfig& config, const MethodResult& r, boo
   const std::string seconds =
       timing ? fmt::format("{:.6f},{}", r.seconds_generate, r.measured ? fmt::format("{:.6f}", r.seconds_stats) : "") : ",";
   const GenerationFacts& f = r.facts;
-  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\",{}\n", config.dimension,
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\",{}\n", config.dimension,
                      config.grid,
                      to_string(r.plan.method), r.point_count,
-                     nearest, displacement, seconds, config.seed, to_string(config.protocol), format_real(r.plan.domain.side),
+                     nearest, displacement, seconds, config.seed, to_string(config.protocol),
+                     to_string(r.plan.domain.kind), format_real(r.plan.domain.side),
                      r.plan.requested, field_or_empty(f.frequency), field_or_empty(f.field_frequency),
                      field_or_empty(f.trace_time), field_or_empty(f.dropped), field_or_empty(f.skipped_updates),
                      field_or_empty(f.retraced), field_or_empty(f.kept_at_site), field_or_empty(f.half_width),

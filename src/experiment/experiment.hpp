@@ -25,30 +25,36 @@ struct SampleConfig {
   int grid = 6;
   std::uint64_t seed = 1;
   int threads = 0;
-  // The main job's: CNJ, jitter at CNJ's RMS displacement, the paper's fixed jitter, Poisson disk, Sobol.
+  // The main job's: CNJ, jitter at CNJ's RMS displacement, stratified jitter, Poisson disk, Sobol.
   std::vector<Method> methods = {Method::cnj, Method::jitter_matched, Method::jitter, Method::pds, Method::sobol};
-  Protocol protocol = Protocol::paper;
+  Protocol protocol = Protocol::fair;
   KnnBackend knn = KnnBackend::nanoflann;
-  CnjOptions cnj;  // cnj.domain and cnj.domain_mode: where CNJ's points stay and how
-  // sphere: methods cnj and random on the unit sphere S^{N-1} (N >= 3), geodesic statistics.
-  Surface on = Surface::none;
-  double pds_radius = 0.0;  // 0: the protocol's (paper: 0.1; unit: 1/K)
+  // cnj.domain is the run's domain, every method's (the fair protocol; the paper's is the cube): the
+  // unit torus (the default), cube, ball, or sphere S^{N-1} (N >= 3: methods cnj and random, geodesic
+  // statistics). The sets are measured in its metric (minimum image on the torus). cnj.domain_mode: how
+  // CNJ meets a boundary.
+  CnjOptions cnj;
+  DomainKind domain() const { return cnj.domain; }
+  // 0: fair: the largest radius that reaches the count, found by the sampler (sampling/poisson_disk.hpp's
+  // poisson_disk_reaching); paper: 0.1. Otherwise this radius, stopping at the count.
+  double pds_radius = 0.0;
   int pds_candidates = 30;
   Scramble scramble = Scramble::owen;
   bool compute_statistics = true;  // false (--no-stats): generate the sets only
   bool compute_rdf = false;
-  RdfOptions rdf;  // rdf.periodic follows periodic_statistics
-  // Nearest-neighbour statistics and the RDF with minimum-image distances on the torus of each set's
-  // box (stats/periodic_neighbours.hpp), for every method; off: the Euclidean distances of the box.
-  bool periodic_statistics = false;
+  RdfOptions rdf;
+  // Whether the sets are measured on the torus (minimum-image distances, the RDF without edges): the
+  // run's domain decides.
+  bool periodic_statistics() const { return cnj.domain == DomainKind::torus; }
   double max_memory_gib = 0.0;  // 0: 80% of the machine's memory
   // Made in slabs (experiment/streamed_sampling.hpp): validate() checks the streamed run's memory and
   // what it refuses instead of the in-memory sets'. stream_slabs: the slab count, 0 = automatic.
   bool stream = false;
   int stream_slabs = 0;
-  // 0: every method takes the lattice's count (Sobol under the paper protocol: 2^round(log2 K^N)).
-  // Otherwise the methods without a lattice (pds, sobol, random, halton, lhs) are asked for exactly
-  // this many points, and `grid` should be grid_for_count(dimension, count) (sampling/lattice.hpp).
+  // 0: every method takes the lattice's count, the sites of the K^N lattice in the domain (Sobol under
+  // the paper protocol: 2^round(log2 K^N)). Otherwise the methods without a lattice (pds, sobol, random,
+  // halton, lhs) are asked for exactly this many points, and `grid` should be grid_for_count(dimension,
+  // count) (sampling/lattice.hpp).
   std::uint64_t count = 0;
 
   // Throws std::invalid_argument with a message naming the option, including when the point sets
@@ -56,6 +62,9 @@ struct SampleConfig {
   void validate() const;
 
   LatticeSpec lattice() const { return {dimension, grid, protocol}; }
+  // Sets the protocol and what it fixes: paper puts the run in the cube (cnj.domain), CNJ in drop mode,
+  // and its steps at Section 5.1's one RK4 step unless steps were chosen (cnj.trace.steps not 0).
+  void use_protocol(Protocol chosen);
 };
 
 // What the user should know before the run: Sobol asked for a count that is not a power of two (its
@@ -77,8 +86,10 @@ double sampling_generation_cost(Method method);
 struct MethodPlan {
   Method method;
   std::uint64_t requested = 0;  // points asked for (PDS may place fewer, CNJ may drop some)
-  Box domain;
-  double pds_radius = 0.0;
+  // Where its points live and are measured: the run's unit domain (fair); under the paper protocol
+  // the cube its lattice's cells fill (LatticeSpec::cells) or the paper's box [0, 0.1 K]^N.
+  Domain domain;
+  double pds_radius = 0.0;  // 0: searched (fair), the largest that reaches `requested`
 };
 MethodPlan plan_method(const SampleConfig& config, Method method);
 
@@ -98,7 +109,7 @@ struct GenerationFacts {
   std::optional<std::uint64_t> retraced;      // cnj: traces repeated with finer steps to stay in the domain
   std::optional<std::uint64_t> kept_at_site;  // cnj: points left at their site when no retrace stayed inside
   std::optional<double> half_width;       // jitter: the offset's half-width, length units
-  std::optional<double> radius;           // pds: the disk radius, length units
+  std::optional<double> radius;           // pds: the disk radius, length units (the one found, when searched)
   std::optional<bool> saturated;          // pds: the active list emptied before `requested` points
 };
 
@@ -140,7 +151,7 @@ std::vector<MethodResult> run_sampling(const SampleConfig& config, bool keep_poi
 
 // CSV text. Stats: one row per method, header dim,grid,method,points,nn_min,nn_q01,nn_median,nn_mean,
 // nn_median_scaled,rms_displacement,median_displacement,frac_unmoved,neighbour_disorder,lattice_order,
-// seconds_generate,seconds_stats,seed,protocol,domain_side,requested,cycles_per_spacing,field_frequency,
+// seconds_generate,seconds_stats,seed,protocol,domain,domain_side,requested,cycles_per_spacing,field_frequency,
 // trace_time,dropped,skipped_updates,retraced,kept_at_site,half_width,radius,saturated,notes,stat (the
 // word "value": a realization; experiment/realizations.hpp adds the "mean" and "sd" rows). A column
 // that does not apply

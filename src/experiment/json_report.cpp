@@ -77,7 +77,76 @@ ordered_json report_head(ordered_json parameters) {
 
 }  // namespace
 
+namespace {
+
+ordered_json generation_json(const GenerationFacts& f) {
+  ordered_json generation = ordered_json::object();
+  put_if(generation, "cycles_per_spacing", f.frequency);
+  put_if(generation, "field_frequency", f.field_frequency);
+  put_if(generation, "trace_time", f.trace_time);
+  put_if(generation, "dropped", f.dropped);
+  put_if(generation, "skipped_updates", f.skipped_updates);
+  put_if(generation, "retraced", f.retraced);
+  put_if(generation, "kept_at_site", f.kept_at_site);
+  put_if(generation, "half_width", f.half_width);
+  put_if(generation, "radius", f.radius);
+  put_if(generation, "saturated", f.saturated);
+  return generation;
+}
+
+ordered_json sampling_parameters(const SampleConfig& config, const std::vector<SamplingRealization>& realizations);
+
+}  // namespace
+
+std::string point_set_made_by_json(const SampleConfig& config, const MethodResult& result,
+                                   const std::vector<std::uint64_t>& seeds) {
+  ordered_json out;
+  out["program"] = "dfvn-sample";
+  out["version"] = DFVN_VERSION;
+  out["method"] = to_string(result.plan.method);
+  out["protocol"] = to_string(config.protocol);
+  out["seeds"] = seeds;
+  out["requested"] = result.plan.requested;
+  out["generation"] = generation_json(result.facts);
+  out["notes"] = result.notes;
+  SamplingRealization one{seeds.empty() ? config.seed : seeds.front(), {}};
+  out["run"] = sampling_parameters(config, {one});
+  return out.dump(-1, ' ', false, ordered_json::error_handler_t::replace);
+}
+
 std::string sampling_json(const SampleConfig& config, const std::vector<SamplingRealization>& realizations, bool timing) {
+  ordered_json parameters = sampling_parameters(config, realizations);
+  ordered_json results = ordered_json::array();
+  std::vector<std::pair<std::string, ordered_json>> members;
+  for (const SamplingRealization& realization : realizations) {
+    for (const MethodResult& r : realization.results) {
+      ordered_json entry;
+      entry["method"] = to_string(r.plan.method);
+      entry["seed"] = realization.seed;
+      entry["requested"] = r.plan.requested;
+      entry["points"] = r.point_count;
+      entry["domain"] = {{"kind", to_string(r.plan.domain.kind)}, {"lo", r.plan.domain.lo}, {"side", r.plan.domain.side}};
+      entry["nearest_neighbour"] = r.measured ? nearest_json(r.nearest) : ordered_json(nullptr);
+      entry["displacement"] = r.displacement ? displacement_json(*r.displacement) : ordered_json(nullptr);
+      entry["generation"] = generation_json(r.facts);
+      if (timing) {
+        entry["seconds"] = {{"generate", r.seconds_generate}};
+        if (r.measured) entry["seconds"]["stats"] = r.seconds_stats;
+      }
+      entry["notes"] = r.notes;
+      members.emplace_back(entry["method"].get<std::string>(), entry);
+      results.push_back(std::move(entry));
+    }
+  }
+  ordered_json out = report_head(std::move(parameters));
+  out["results"] = std::move(results);
+  if (realizations.size() > 1) out["summary"] = summary_json(members);
+  return dump(out);
+}
+
+namespace {
+
+ordered_json sampling_parameters(const SampleConfig& config, const std::vector<SamplingRealization>& realizations) {
   ordered_json parameters;
   parameters["dim"] = config.dimension;
   parameters["grid"] = config.grid;
@@ -94,7 +163,7 @@ std::string sampling_json(const SampleConfig& config, const std::vector<Sampling
   parameters["statistics"] = config.compute_statistics;
   parameters["cnj"] = {{"noise", to_string(config.cnj.noise)},
                        {"integrator", to_string(config.cnj.trace.integrator)},
-                       {"steps", cnj_steps(config.on == Surface::sphere ? sphere_cnj_options(config.cnj) : config.cnj)},
+                       {"steps", cnj_steps(config.domain() == DomainKind::sphere ? sphere_cnj_options(config.cnj) : config.cnj)},
                        {"step_scale", config.cnj.step_scale},
                        {"cycles_per_spacing", config.cnj.frequency},
                        {"reprojection", to_string(config.cnj.trace.reprojection)},
@@ -124,53 +193,18 @@ std::string sampling_json(const SampleConfig& config, const std::vector<Sampling
     parameters["cnj"]["steer"] = {{"field", transform.steer.circular ? "circular" : "constant"},
                                   {"direction", transform.steer.direction},
                                   {"k", transform.steer.k}};
-  parameters["periodic_statistics"] = config.periodic_statistics;
-  // null: the protocol's radius, which each pds result gives under "generation".
+  parameters["domain"] = to_string(config.domain());
+  parameters["periodic_statistics"] = config.periodic_statistics();
+  // null: the protocol's radius (paper) or the one found (fair), which each pds result gives under "generation".
   parameters["pds"] = {{"radius", config.pds_radius > 0.0 ? ordered_json(config.pds_radius) : ordered_json(nullptr)},
                        {"candidates", config.pds_candidates}};
   parameters["rdf"] = config.compute_rdf ? ordered_json{{"r_max", config.rdf.r_max}, {"bins", config.rdf.bins},
                                                         {"max_queries", config.rdf.max_queries}}
                                          : ordered_json(nullptr);
-
-  ordered_json results = ordered_json::array();
-  std::vector<std::pair<std::string, ordered_json>> members;
-  for (const SamplingRealization& realization : realizations) {
-    for (const MethodResult& r : realization.results) {
-      ordered_json entry;
-      entry["method"] = to_string(r.plan.method);
-      entry["seed"] = realization.seed;
-      entry["requested"] = r.plan.requested;
-      entry["points"] = r.point_count;
-      entry["domain"] = {{"lo", r.plan.domain.lo}, {"side", r.plan.domain.side}};
-      entry["nearest_neighbour"] = r.measured ? nearest_json(r.nearest) : ordered_json(nullptr);
-      entry["displacement"] = r.displacement ? displacement_json(*r.displacement) : ordered_json(nullptr);
-      ordered_json generation = ordered_json::object();
-      const GenerationFacts& f = r.facts;
-      put_if(generation, "cycles_per_spacing", f.frequency);
-      put_if(generation, "field_frequency", f.field_frequency);
-      put_if(generation, "trace_time", f.trace_time);
-      put_if(generation, "dropped", f.dropped);
-      put_if(generation, "skipped_updates", f.skipped_updates);
-      put_if(generation, "retraced", f.retraced);
-      put_if(generation, "kept_at_site", f.kept_at_site);
-      put_if(generation, "half_width", f.half_width);
-      put_if(generation, "radius", f.radius);
-      put_if(generation, "saturated", f.saturated);
-      entry["generation"] = generation;
-      if (timing) {
-        entry["seconds"] = {{"generate", r.seconds_generate}};
-        if (r.measured) entry["seconds"]["stats"] = r.seconds_stats;
-      }
-      entry["notes"] = r.notes;
-      members.emplace_back(entry["method"].get<std::string>(), entry);
-      results.push_back(std::move(entry));
-    }
-  }
-  ordered_json out = report_head(std::move(parameters));
-  out["results"] = std::move(results);
-  if (realizations.size() > 1) out["summary"] = summary_json(members);
-  return dump(out);
+  return parameters;
 }
+
+}  // namespace
 
 std::string point_statistics_json(const PointStatisticsRun& run) {
   ordered_json parameters = {{"input", run.input},

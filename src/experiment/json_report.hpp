@@ -25,6 +25,13 @@ struct SamplingRealization {
 // the seconds (off: two runs with the same seed give the same bytes).
 std::string sampling_json(const SampleConfig& config, const std::vector<SamplingRealization>& realizations, bool timing);
 
+// What made one point set, for the sidecar beside its file (io/point_sidecar.hpp): {"program",
+// "version", "method", "protocol", "seeds" (one per set in the file), "requested", "generation" (the
+// facts of the stats CSV's columns: radius, trace time, ...), "notes", "run" (the --json parameters)},
+// as one line of JSON text.
+std::string point_set_made_by_json(const SampleConfig& config, const MethodResult& result,
+                                   const std::vector<std::uint64_t>& seeds);
+
 // `dfvn-sample stats`: {"program", "version", "parameters": {"input", "format", "domain_side", ...},
 // "sets": [one object per set], "summary"} (summary with more than one set). JSON strings are UTF-8:
 // bytes of `input` that are not valid UTF-8 are written as U+FFFD.

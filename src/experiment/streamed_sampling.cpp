@@ -260,8 +260,8 @@ class DisplacementStream {
 // The points of a set spilled by their last coordinate into buckets, then measured bucket by bucket.
 class NearestStream {
  public:
-  NearestStream(const SampleConfig& config, const TemporaryDirectory& dir, int buckets, const Box& domain)
-      : config_(config), n_(config.dimension), periodic_(config.periodic_statistics), domain_(domain),
+  NearestStream(const SampleConfig& config, const TemporaryDirectory& dir, int buckets, const Domain& domain)
+      : config_(config), n_(config.dimension), periodic_(domain.periodic()), domain_(domain),
         runs_(dir.file("distance_runs")) {
     for (int b = 0; b < buckets; ++b) {
       buckets_.push_back(std::make_unique<TemporaryFile>(dir.file(fmt::format("bucket{}", b))));
@@ -346,7 +346,7 @@ class NearestStream {
       runs_.add(run);
     }
     if (std::isnan(sum)) throw std::logic_error("a streamed point without its nearest-neighbour distance");
-    return summarize_nearest_neighbours(total_, sum, order_statistics(runs_), domain_.volume(n_), n_);
+    return summarize_nearest_neighbours(total_, sum, order_statistics(runs_), domain_.measure(n_), n_);
   }
 
   // The RDF of the whole set (after measure): each bucket's query points (RdfQueries, chosen by output
@@ -542,7 +542,7 @@ class NearestStream {
   const SampleConfig& config_;
   int n_;
   bool periodic_;
-  Box domain_;
+  Domain domain_;
   std::vector<std::unique_ptr<TemporaryFile>> buckets_;
   std::vector<std::uint64_t> counts_;
   std::vector<std::unique_ptr<TemporaryFile>> pairs_;  // per bucket: its points' (index, distance), by index
@@ -566,7 +566,7 @@ MethodResult run_streamed_method(const SampleConfig& config, const MethodPlan& p
   std::unique_ptr<DisplacementStream> displacement;
   if (lattice_method) displacement = std::make_unique<DisplacementStream>(config, spacing, dir.file("length_runs"));
   std::unique_ptr<NearestStream> nearest;
-  const Box domain = plan.method == Method::cnj ? Box{0.0, 1.0} : plan.domain;
+  const Domain domain = plan.domain;
   if (config.compute_statistics) {
     if (domain_scale(domain.side) != 1.0) throw std::invalid_argument("--stream measures sets of ordinary side only");
     nearest = std::make_unique<NearestStream>(config, dir, slab_count, domain);
@@ -606,8 +606,7 @@ MethodResult run_streamed_method(const SampleConfig& config, const MethodPlan& p
     facts.skipped_updates = skipped;
     facts.retraced = retraced;
     facts.kept_at_site = kept;
-    result.notes = fmt::format("{} noise; {} domain; {}", to_string(config.cnj.noise), to_string(config.cnj.domain),
-                               to_string(config.cnj.domain_mode));
+    result.notes = fmt::format("{} noise; {}", to_string(config.cnj.noise), to_string(config.cnj.domain_mode));
     if (config.cnj.field == FieldKind::curl) result.notes += "; curl noise field, no reprojection";
   } else if (plan.method == Method::jitter) {
     facts.half_width = jitter_half_width(lattice);
@@ -634,9 +633,7 @@ MethodResult run_streamed_method(const SampleConfig& config, const MethodPlan& p
   if (config.compute_rdf) {
     const std::string rdf_stage = name + " rdf";
     if (progress) progress(rdf_stage, 0.0);
-    RdfOptions rdf = config.rdf;
-    rdf.periodic = config.periodic_statistics;
-    result.rdf = nearest->radial_distribution(rdf, config.seed, [&](double f) {
+    result.rdf = nearest->radial_distribution(config.rdf, config.seed, [&](double f) {
       if (progress) progress(rdf_stage, f);
     });
   }
@@ -645,11 +642,13 @@ MethodResult run_streamed_method(const SampleConfig& config, const MethodPlan& p
 
 }  // namespace
 
-Slab generate_slab(const SampleConfig& config, const MethodPlan& plan, std::uint64_t first, std::uint64_t rows) {
+namespace {
+
+Slab generate_slab_points(const SampleConfig& config, const MethodPlan& plan, std::uint64_t first, std::uint64_t rows) {
   const LatticeSpec lattice = config.lattice();
   Slab s;
   if (rows == 0) {
-    s.points = PointSet{config.dimension, {}, plan.method == Method::cnj ? Box{0.0, 1.0} : plan.domain};
+    s.points = PointSet{config.dimension, {}, plan.domain};
     return s;
   }
   switch (plan.method) {
@@ -677,25 +676,33 @@ Slab generate_slab(const SampleConfig& config, const MethodPlan& plan, std::uint
       return s;
     }
     case Method::random:
-      s.points = uniform_random_points_range(config.dimension, first, rows, plan.domain, config.seed, config.threads);
+      s.points = uniform_random_points_range(config.dimension, first, rows, plan.domain.box(), config.seed, config.threads);
       return s;
     case Method::sobol:
-      s.points = sobol_points_range(config.dimension, first, rows, plan.domain, config.scramble, config.seed, config.threads);
+      s.points = sobol_points_range(config.dimension, first, rows, plan.domain.box(), config.scramble, config.seed, config.threads);
       return s;
     default: break;
   }
   throw std::logic_error("a method that does not stream");
 }
 
+}  // namespace
+
+Slab generate_slab(const SampleConfig& config, const MethodPlan& plan, std::uint64_t first, std::uint64_t rows) {
+  Slab s = generate_slab_points(config, plan, first, rows);
+  s.points.domain = plan.domain;  // as run_sampling's sets: where the plan says they live
+  return s;
+}
+
 std::string stream_refusal(const SampleConfig& config) {
-  if (config.on != Surface::none) return "--stream makes point sets in a cube, not --on sphere";
+  if (config.domain() == DomainKind::sphere || config.domain() == DomainKind::ball)
+    return fmt::format("--stream cuts the K^N lattice of a torus or cube into slabs, not --domain {}",
+                       to_string(config.domain()));
   for (Method m : config.methods) {
     if (m == Method::pds || m == Method::jitter_matched || m == Method::halton || m == Method::lhs)
       return fmt::format("--stream makes the index-addressable sets cnj, jitter, random and sobol in slabs, not {}{}",
                          to_string(m),
                          m == Method::pds ? " (Poisson disk places each point after all before it)" : "");
-    if (m == Method::cnj && config.cnj.domain == CnjDomain::ball)
-      return "--stream cuts the K^N lattice into slabs, not the ball's clipped lattice: --domain torus or cube";
   }
   return {};
 }

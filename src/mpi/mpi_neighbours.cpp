@@ -66,7 +66,7 @@ std::vector<double> all_to_all(MPI_Comm comm, const std::vector<std::vector<doub
   return in;
 }
 
-OwnedPoints::OwnedPoints(const RankSlabs& ranks, const PointSet& mine, std::uint64_t my_first, const Box& domain,
+OwnedPoints::OwnedPoints(const RankSlabs& ranks, const PointSet& mine, std::uint64_t my_first, const Domain& domain,
                          bool periodic)
     : ranks_(ranks), n_(mine.dimension), domain_(domain), periodic_(periodic) {
   const int n = n_, slabs = ranks_.slabs;
@@ -243,7 +243,6 @@ std::vector<std::pair<std::uint64_t, double>> OwnedPoints::nearest_distances(con
 
 RdfCurve OwnedPoints::radial_distribution(const RdfOptions& options, std::uint64_t seed, std::uint64_t total,
                                           int threads, const FractionProgress& progress) {
-  if (options.periodic != periodic_) throw std::logic_error("an RDF on another domain than the distances'");
   const RdfPlan plan = plan_radial_distribution(n_, domain_, total, options);
   const RdfQueries is_query(options, seed, total);
   // The halo holds every point within r_max of this rank's points (sample --stream's RDF halo).

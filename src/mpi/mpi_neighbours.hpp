@@ -45,7 +45,7 @@ class OwnedPoints {
  public:
   // `mine`: this rank's generated points, output rows my_first .. my_first + mine.size() - 1; `periodic`:
   // distances on the torus of `domain`.
-  OwnedPoints(const RankSlabs& ranks, const PointSet& mine, std::uint64_t my_first, const Box& domain, bool periodic);
+  OwnedPoints(const RankSlabs& ranks, const PointSet& mine, std::uint64_t my_first, const Domain& domain, bool periodic);
 
   // Every point's nearest-neighbour distance (minimum-image on the torus), returned to the rank that made
   // the point: (index, distance) for rows my_first .. of `mine`, by index. `first_rows`: the first output
@@ -70,7 +70,7 @@ class OwnedPoints {
 
   RankSlabs ranks_;
   int n_;
-  Box domain_;
+  Domain domain_;
   bool periodic_;
   std::vector<double> owned_;  // records of N + 1 doubles
   double zmin_, zmax_;         // over all ranks' points

@@ -138,7 +138,7 @@ MethodResult run_mpi_method(const RankSlabs& ranks, const SampleConfig& config, 
   const std::uint64_t first = first_row(my_slab);
   const std::uint64_t rows = first_row(end_slab) - first;
   const LatticeSpec lattice = config.lattice();
-  const Box domain = plan.method == Method::cnj ? Box{0.0, 1.0} : plan.domain;
+  const Domain domain = plan.domain;
   if (config.compute_statistics && domain_scale(domain.side) != 1.0)
     throw std::invalid_argument("--stream measures sets of ordinary side only");
 
@@ -191,8 +191,7 @@ MethodResult run_mpi_method(const RankSlabs& ranks, const SampleConfig& config, 
     facts.skipped_updates = totals[2];
     facts.retraced = totals[3];
     facts.kept_at_site = totals[4];
-    result.notes = fmt::format("{} noise; {} domain; {}", to_string(config.cnj.noise), to_string(config.cnj.domain),
-                               to_string(config.cnj.domain_mode));
+    result.notes = fmt::format("{} noise; {}", to_string(config.cnj.noise), to_string(config.cnj.domain_mode));
     if (config.cnj.field == FieldKind::curl) result.notes += "; curl noise field, no reprojection";
   } else if (plan.method == Method::jitter) {
     facts.half_width = jitter_half_width(lattice);
@@ -236,7 +235,7 @@ MethodResult run_mpi_method(const RankSlabs& ranks, const SampleConfig& config, 
   std::unique_ptr<OwnedPoints> owned;
   std::vector<std::pair<std::uint64_t, double>> pairs;
   run_everywhere(ranks.comm, [&] {
-    owned = std::make_unique<OwnedPoints>(ranks, part.points, my_first, domain, config.periodic_statistics);
+    owned = std::make_unique<OwnedPoints>(ranks, part.points, my_first, domain, domain.periodic());
     part.points = {};
     pairs = owned->nearest_distances(first_rows, accepted, config.knn, config.threads, [&](double f) {
       if (progress) progress(stage, f);
@@ -250,14 +249,13 @@ MethodResult run_mpi_method(const RankSlabs& ranks, const SampleConfig& config, 
   for (std::size_t k = 0; k < pairs.size(); ++k) sorted[k] = pairs[k].second;
   std::sort(sorted.begin(), sorted.end());
   result.nearest = summarize_nearest_neighbours(accepted, state[0], distributed_order_statistics(ranks.comm, sorted, accepted),
-                                                domain.volume(n), n);
+                                                domain.measure(n), n);
   result.measured = true;
   result.seconds_stats = stopwatch.seconds();
   if (config.compute_rdf) {
     const std::string rdf_stage = name + " rdf";
     if (progress) progress(rdf_stage, 0.0);
-    RdfOptions rdf = config.rdf;
-    rdf.periodic = config.periodic_statistics;
+    const RdfOptions& rdf = config.rdf;
     run_everywhere(ranks.comm, [&] {
       result.rdf = owned->radial_distribution(rdf, config.seed, accepted, config.threads, [&](double f) {
         if (progress) progress(rdf_stage, f);

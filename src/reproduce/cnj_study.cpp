@@ -48,7 +48,7 @@ void CnjStudyConfig::validate() const {
     if (!std::isfinite(f) || !(f > 0.0))
       throw std::invalid_argument(fmt::format("--cycles-per-spacing must be finite and positive, got {:g}", f));
     for (int d : dimensions) {
-      const LatticeSpec spec{d, study_grid(lattice, d), lattice == StudyLattice::paper ? Protocol::paper : Protocol::unit};
+      const LatticeSpec spec{d, study_grid(lattice, d), lattice == StudyLattice::paper ? Protocol::paper : Protocol::fair};
       const double field_frequency = f / spec.spacing();
       if (!(field_frequency >= kMinNoiseFrequency && field_frequency <= kMaxNoiseFrequency))
         throw std::invalid_argument(fmt::format(
@@ -191,7 +191,7 @@ std::vector<double> cnj_study_stage_weights(const CnjStudyConfig& config) {
   std::vector<double> weights;
   for (int n : config.dimensions) {
     const double points =
-        static_cast<double>(LatticeSpec{n, study_grid(config.lattice, n), Protocol::unit}.point_count());
+        static_cast<double>(LatticeSpec{n, study_grid(config.lattice, n), Protocol::fair}.point_count());
     for (std::size_t b = 0; b < config.bases.size(); ++b)
       for (std::size_t f = 0; f < config.frequencies.size(); ++f)
         for (std::size_t c = 0; c < config.step_scales.size(); ++c)
@@ -209,7 +209,7 @@ CnjStudyResult run_cnj_study(const CnjStudyConfig& config, const StageProgress& 
   result.config = config;
   for (int n : config.dimensions) {
     const bool paper = config.lattice == StudyLattice::paper;
-    const LatticeSpec lattice{n, study_grid(config.lattice, n), paper ? Protocol::paper : Protocol::unit};
+    const LatticeSpec lattice{n, study_grid(config.lattice, n), paper ? Protocol::paper : Protocol::fair};
     const double a = lattice.spacing();
     const PackingRule packing{config.lattice, paper ? std::vector<unsigned char>{} : interior_mask(lattice), a,
                               config.threads};
@@ -232,7 +232,7 @@ CnjStudyResult run_cnj_study(const CnjStudyConfig& config, const StageProgress& 
               options.frequency = frequency;
               options.step_scale = step_scale;
               options.trace.steps = steps;
-              options.domain = CnjDomain::cube;
+              options.domain = DomainKind::cube;
               options.domain_mode = DomainMode::drop;  // the free field: the study measures interior packing
               const CnjResult cnj = curl_noise_jitter(lattice, options, row.seed, config.threads);
               // Every traced point, inside [0,1]^N or not: x = site + displacement.
@@ -421,7 +421,7 @@ std::string cnj_study_markdown(const CnjStudyResult& result) {
   const CnjStudyConfig& cfg = result.config;
   const auto cells = cell_means(result);
   CnjOptions defaults;
-  defaults.domain = CnjDomain::cube;
+  defaults.domain = DomainKind::cube;
   defaults.domain_mode = DomainMode::drop;  // as every run of the study
   const int default_steps = cnj_steps(defaults);
   const bool paper = cfg.lattice == StudyLattice::paper;

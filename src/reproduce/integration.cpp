@@ -122,7 +122,7 @@ IntegrationResult run_integration(const IntegrationConfig& config, const StagePr
           sample.grid = grid;
           sample.seed = config.seed + static_cast<std::uint64_t>(r);
           sample.threads = config.threads;
-          sample.protocol = Protocol::unit;  // every method in [0,1]^N, at the density of K^N points
+          sample.protocol = Protocol::fair;  // every method in [0,1]^N, at the density of K^N points
           sample.methods = {method};
           MethodPlan plan = plan_method(sample, method);
           if (method == Method::sobol) {  // Sobol at its own sizes: the power of two nearest K^N
@@ -131,7 +131,13 @@ IntegrationResult run_integration(const IntegrationConfig& config, const StagePr
           }
           // Poisson disk runs to saturation: stopped at a count, Bridson's front would cover only part of
           // the cube (in 6D-7D radius 1/K admits more than K^N points) and bias the mean.
-          if (method == Method::pds) plan.requested = std::numeric_limits<std::uint64_t>::max();
+          // It samples the unit cube at radius 1/K (the integrands live on the cube; CNJ on the torus, the
+          // main job's domain, whose points are in [0,1)^N too).
+          if (method == Method::pds) {
+            plan.requested = std::numeric_limits<std::uint64_t>::max();
+            plan.domain = Domain::unit(DomainKind::cube);
+            plan.pds_radius = 1.0 / grid;
+          }
           MethodResult generated;
           generated.plan = plan;
           generate_points(sample, generated);
@@ -221,7 +227,7 @@ std::string integration_markdown(const IntegrationResult& result) {
       "Genz's six families on [0,1]^N with random parameters per realization (difficulties b = 9.0, 7.25, 1.85, 7.03, "
       "20.4, 4.3), integrated by the plain mean over each point set. RMS relative error over R = {} realizations "
       "(seeds {}..{}; a realization draws new point sets and new integrands, the same integrands for every method), "
-      "with its standard error; every method in [0,1]^N (protocol unit) at the density of a K^N lattice;{} The slope "
+      "with its standard error; every method in [0,1]^N (the fair protocol) at the density of a K^N lattice;{} The slope "
       "is the least-squares slope of log RMS error against log points (plain Monte Carlo: -0.5); n/a where a "
       "dimension has a single size.\n\n",
       config.realizations, config.seed, config.seed + static_cast<std::uint64_t>(config.realizations - 1), method_notes);

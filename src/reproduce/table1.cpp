@@ -81,10 +81,9 @@ SampleConfig table1_config(const Table1Config& config, int dimension) {
   c.seed = config.seed;
   c.threads = config.threads;
   c.methods = {Method::cnj, Method::jitter, Method::pds, Method::sobol};
-  c.protocol = Protocol::paper;
   c.cnj = config.cnj;
-  c.cnj.domain = CnjDomain::cube;
-  c.cnj.domain_mode = DomainMode::drop;  // the paper's protocol: points that leave [0,1]^N are dropped
+  // Section 5.1 for every method: the cube, CNJ's one RK4 step, the points that leave [0,1]^N dropped.
+  c.use_protocol(Protocol::paper);
   c.rdf = config.rdf;
   return c;
 }

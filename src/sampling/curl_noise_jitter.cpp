@@ -12,22 +12,6 @@
 
 namespace dfvn {
 
-CnjDomain parse_cnj_domain(std::string_view name) {
-  if (name == "torus") return CnjDomain::torus;
-  if (name == "cube") return CnjDomain::cube;
-  if (name == "ball") return CnjDomain::ball;
-  throw std::invalid_argument("unknown domain " + quote_for_message(name) + " (allowed: torus, cube, ball)");
-}
-
-std::string_view to_string(CnjDomain domain) {
-  switch (domain) {
-    case CnjDomain::torus: return "torus";
-    case CnjDomain::cube: return "cube";
-    case CnjDomain::ball: return "ball";
-  }
-  return "?";
-}
-
 DomainMode parse_domain_mode(std::string_view name) {
   if (name == "conformant") return DomainMode::conformant;
   if (name == "drop") return DomainMode::drop;
@@ -38,7 +22,7 @@ std::string_view to_string(DomainMode mode) { return mode == DomainMode::conform
 
 int cnj_steps(const CnjOptions& options) {
   if (options.trace.steps != CnjOptions::kStepsByDomainMode) return options.trace.steps;
-  const bool free_field = options.domain_mode == DomainMode::drop || options.domain == CnjDomain::torus;
+  const bool free_field = options.domain_mode == DomainMode::drop || options.domain == DomainKind::torus;
   return free_field ? kFreeFieldSteps : 1;
 }
 
@@ -59,17 +43,19 @@ void CnjOptions::validate() const {
   check_noise_phase(phase);
   transform.validate();
   parse_noise_basis(to_string(noise));  // an unknown enum value throws
-  parse_cnj_domain(to_string(domain));
+  parse_domain_kind(to_string(domain));
+  if (domain == DomainKind::sphere && domain_mode == DomainMode::drop)
+    throw std::invalid_argument("CNJ on the sphere traces along it: it has no boundary to drop points at");
   parse_bound(to_string(bound));
-  if (domain == CnjDomain::torus && domain_mode == DomainMode::drop)
+  if (domain == DomainKind::torus && domain_mode == DomainMode::drop)
     throw std::invalid_argument("the torus has no boundary to drop points at: use domain mode conformant (its traces wrap)");
-  if (domain == CnjDomain::torus && noise != NoiseBasis::turning_bands)
+  if (domain == DomainKind::torus && noise != NoiseBasis::turning_bands)
     throw std::invalid_argument(fmt::format("the torus needs a periodic noise basis: turning-bands (not {})", to_string(noise)));
   parse_field_kind(to_string(field));
   if (field == FieldKind::curl && trace.reprojection != Reprojection::none)
     throw std::invalid_argument(
         "curl noise has no reprojection (its streamlines are not intersections of iso-surfaces): --reproject none");
-  if (field == FieldKind::curl && domain != CnjDomain::torus && domain_mode == DomainMode::conformant)
+  if (field == FieldKind::curl && domain != DomainKind::torus && domain_mode == DomainMode::conformant)
     throw std::invalid_argument(
         "CNJ along curl noise has no boundary treatment (Bridson's boundaries exist for `field` only): conformant CNJ "
         "in the cube or ball needs --field dfvn; use the torus or --domain-mode drop");
@@ -92,16 +78,16 @@ double cnj_transition_width(const CnjOptions& options, const LatticeSpec& lattic
 
 namespace {
 
-bool site_in_domain(const double* x, int dimension, CnjDomain domain) {
-  if (domain != CnjDomain::ball) return true;
+bool site_in_domain(const double* x, int dimension, DomainKind domain) {
+  if (domain != DomainKind::ball) return true;
   double from_centre2 = 0.0;
   for (int j = 0; j < dimension; ++j) from_centre2 += (x[j] - 0.5) * (x[j] - 0.5);
   return from_centre2 < 0.25;
 }
 
 FieldConstraint field_constraint(const CnjOptions& options) {
-  if (options.domain_mode == DomainMode::drop || options.domain == CnjDomain::torus) return FieldConstraint::none;
-  return options.domain == CnjDomain::cube ? FieldConstraint::inside_cube : FieldConstraint::inside_ball;
+  if (options.domain_mode == DomainMode::drop || options.domain == DomainKind::torus) return FieldConstraint::none;
+  return options.domain == DomainKind::cube ? FieldConstraint::inside_cube : FieldConstraint::inside_ball;
 }
 
 }  // namespace
@@ -109,22 +95,22 @@ FieldConstraint field_constraint(const CnjOptions& options) {
 FieldOptions cnj_field_options(const CnjOptions& options, double spacing) {
   return FieldOptions{options.noise,     options.frequency / spacing,
                       field_constraint(options), transition_width_for_spacing(options, spacing),
-                      options.bound,     options.domain == CnjDomain::torus,
+                      options.bound,     options.domain == DomainKind::torus,
                       options.field,     options.phase,
                       options.transform};
 }
 
-LatticeSpec cnj_lattice(const LatticeSpec& lattice, CnjDomain domain) {
+LatticeSpec cnj_lattice(const LatticeSpec& lattice, DomainKind domain) {
   LatticeSpec out = lattice;
-  if (domain == CnjDomain::torus) out.protocol = Protocol::unit;
+  if (domain == DomainKind::torus) out.protocol = Protocol::fair;
   return out;
 }
 
-std::vector<double> cnj_start_sites(const LatticeSpec& lattice, CnjDomain domain) {
+std::vector<double> cnj_start_sites(const LatticeSpec& lattice, DomainKind domain) {
   const int n = lattice.dimension;
   const std::uint64_t count = lattice.point_count();
   std::vector<double> sites;
-  sites.reserve(domain != CnjDomain::ball ? count * n : 0);
+  sites.reserve(domain != DomainKind::ball ? count * n : 0);
   std::vector<double> x(static_cast<std::size_t>(n));
   for (std::uint64_t i = 0; i < count; ++i) {
     lattice.point(i, x.data());
@@ -133,9 +119,9 @@ std::vector<double> cnj_start_sites(const LatticeSpec& lattice, CnjDomain domain
   return sites;
 }
 
-std::uint64_t cnj_start_count(const LatticeSpec& lattice, CnjDomain domain) {
+std::uint64_t cnj_start_count(const LatticeSpec& lattice, DomainKind domain) {
   const std::uint64_t count = lattice.point_count();
-  if (domain != CnjDomain::ball) return count;
+  if (domain != DomainKind::ball) return count;
   std::uint64_t inside = 0;
   std::vector<double> x(static_cast<std::size_t>(lattice.dimension));
   for (std::uint64_t i = 0; i < count; ++i) {
@@ -152,12 +138,12 @@ namespace {
 template <int N>
 CnjResult curl_noise_jitter_sites(const LatticeSpec& lattice, const CnjOptions& options, std::uint64_t seed,
                                   const std::vector<double>& sites, int threads, const FractionProgress& progress) {
-  const bool torus = options.domain == CnjDomain::torus;
+  const bool torus = options.domain == DomainKind::torus;
   CnjResult result;
   result.trace_time = options.step_scale * average_neighbour_distance(N) * lattice.spacing();
   const DfvnField<N> field(seed, cnj_field_options(options, lattice.spacing()));
   result.field_frequency = field.frequency();
-  const Box domain{0.0, 1.0, options.domain == CnjDomain::ball};
+  const Domain domain = Domain::unit(options.domain);
   const auto count = static_cast<std::int64_t>(sites.size() / N);
   result.started = static_cast<std::uint64_t>(count);
 
@@ -181,7 +167,7 @@ CnjResult curl_noise_jitter_sites(const LatticeSpec& lattice, const CnjOptions& 
     else
       ++result.dropped;
   }
-  if (torus) wrap_to_unit_torus(result.points.coordinates.data(), result.points.coordinates.size());
+  for (std::size_t i = 0; torus && i < result.points.size(); ++i) domain.wrap(result.points.coordinates.data() + i * N, N);
   result.rms_displacement = count > 0 ? std::sqrt(total_squared_displacement / static_cast<double>(count)) : 0.0;
   result.retraced = traced.retraced;
   result.kept_at_site = traced.kept_at_start;
@@ -211,7 +197,7 @@ CnjResult curl_noise_jitter(const LatticeSpec& lattice, const CnjOptions& option
 CnjResult curl_noise_jitter_range(const LatticeSpec& requested_lattice, const CnjOptions& options, std::uint64_t seed,
                                   std::uint64_t first, std::uint64_t count, int threads) {
   options.validate();
-  if (options.domain == CnjDomain::ball)
+  if (options.domain == DomainKind::ball)
     throw std::invalid_argument("CNJ in the ball starts from the clipped lattice, whose rows are not lattice indices");
   const LatticeSpec lattice = cnj_lattice(requested_lattice, options.domain);
   const int n = lattice.dimension;

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "dfvn/core/domain.hpp"
 #include "dfvn/core/progress.hpp"
 #include "dfvn/field/constraint.hpp"
 #include "dfvn/field/dfvn_field.hpp"
@@ -20,14 +21,11 @@
 
 namespace dfvn {
 
-// torus: [0,1)^N with opposite faces identified; the start set is the cell-centred K^N lattice (the
-// only one that tiles it) whatever the protocol. cube: [0,1]^N. ball: its inscribed ball (centre 1/2,
-// radius 1/2); the start set is the lattice clipped to it. data/boundary_shares.md: why the torus is
-// the default.
-enum class CnjDomain { torus, cube, ball };
-inline constexpr CnjDomain kDefaultCnjDomain = CnjDomain::torus;
-CnjDomain parse_cnj_domain(std::string_view name);  // "torus" | "cube" | "ball"
-std::string_view to_string(CnjDomain domain);
+// CNJ's domain (core/domain.hpp's DomainKind, the unit domain of its kind): torus [0,1)^N with opposite
+// faces identified; the start set is the cell-centred K^N lattice (the only one that tiles it) whatever
+// the protocol. cube: [0,1]^N. ball: its inscribed ball (centre 1/2, radius 1/2); the start set is the
+// lattice clipped to it. The sphere has its own CNJ (sampling/sphere_jitter.hpp). data/boundary_shares.md:
+// why the torus is the default.
 // conformant: the field bounded by the domain (`bound`); drop: the free field, points that leave are
 // dropped. The torus has no boundary: it takes conformant (its traces wrap), and drop is refused.
 enum class DomainMode { conformant, drop };
@@ -61,7 +59,7 @@ struct CnjOptions {
   // spacings has left the unit cube unless its streamline loops); the bound keeps every
   // displacement, and the sum of their squares, far from overflow.
   static constexpr double kMaxStepScale = 0x1p20;
-  CnjDomain domain = kDefaultCnjDomain;
+  DomainKind domain = kDefaultDomainKind;
   DomainMode domain_mode = DomainMode::conformant;
   Bound bound = Bound::eq13;  // conformant cube and ball: how f_1 meets the boundary (field/constraint.hpp)
   // Eq. (13)'s transition width w in lattice spacings (--boundary-spacings): alpha goes from 0 on the boundary to 1 at w,
@@ -98,12 +96,12 @@ double cnj_transition_width(const CnjOptions& options, const LatticeSpec& lattic
 FieldOptions cnj_field_options(const CnjOptions& options, double spacing);
 
 // The lattice CNJ starts from: `lattice`, or its cell-centred form on the torus.
-LatticeSpec cnj_lattice(const LatticeSpec& lattice, CnjDomain domain);
+LatticeSpec cnj_lattice(const LatticeSpec& lattice, DomainKind domain);
 
 // The start sites: the K^N lattice (cube, torus) or its points strictly inside the inscribed ball
 // (ball), in lattice order; sites x N, row-major.
-std::vector<double> cnj_start_sites(const LatticeSpec& lattice, CnjDomain domain);
-std::uint64_t cnj_start_count(const LatticeSpec& lattice, CnjDomain domain);
+std::vector<double> cnj_start_sites(const LatticeSpec& lattice, DomainKind domain);
+std::uint64_t cnj_start_count(const LatticeSpec& lattice, DomainKind domain);
 
 struct CnjResult {
   PointSet points;                  // in the domain: [0,1)^N (torus), [0,1]^N or its inscribed ball

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "dfvn/core/hash.hpp"
+#include "dfvn/core/torus.hpp"
 #include "dfvn/core/parallel.hpp"
 
 namespace dfvn {
@@ -31,6 +32,41 @@ PointSet jittered_lattice_range(const LatticeSpec& lattice, double half_width, s
     lattice.point(i, x);
     for (int j = 0; j < n; ++j)
       x[j] += h * (2.0 * random_unit(seed, Stream::jitter, i, static_cast<std::uint64_t>(j)) - 1.0);
+  }
+  return out;
+}
+
+PointSet jittered_sites_in_ball(const LatticeSpec& lattice, std::uint64_t seed, int threads) {
+  const int n = lattice.dimension;
+  const Domain ball = Domain::unit(DomainKind::ball);
+  const double h = jitter_half_width(lattice);
+  const auto inside_strictly = [n](const double* x) {
+    double from_centre2 = 0.0;
+    for (int j = 0; j < n; ++j) from_centre2 += (x[j] - 0.5) * (x[j] - 0.5);
+    return from_centre2 < 0.25;
+  };
+  std::vector<double> sites;
+  std::vector<double> x(n);
+  const std::uint64_t count = lattice.point_count();
+  for (std::uint64_t i = 0; i < count; ++i) {
+    lattice.point(i, x.data());
+    if (inside_strictly(x.data())) sites.insert(sites.end(), x.begin(), x.end());
+  }
+  const auto rows = static_cast<std::int64_t>(sites.size() / n);
+  PointSet out{n, Coordinates(sites.size()), ball};
+  constexpr std::uint64_t kAttempts = 4096;
+#pragma omp parallel for schedule(static) num_threads(resolve_threads(threads)) if (worth_threads(out.coordinates.size()))
+  for (std::int64_t r = 0; r < rows; ++r) {
+    const double* site = sites.data() + r * n;
+    double* y = out.coordinates.data() + r * n;
+    std::copy(site, site + n, y);
+    for (std::uint64_t attempt = 0; attempt < kAttempts; ++attempt) {
+      const std::uint64_t key = hash_combine(static_cast<std::uint64_t>(r), attempt);
+      for (int j = 0; j < n; ++j)
+        y[j] = site[j] + h * (2.0 * random_unit(seed, Stream::jitter, key, static_cast<std::uint64_t>(j)) - 1.0);
+      if (ball.contains(y, n)) break;
+      if (attempt + 1 == kAttempts) std::copy(site, site + n, y);
+    }
   }
   return out;
 }

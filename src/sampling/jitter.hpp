@@ -16,6 +16,12 @@ PointSet jittered_lattice(const LatticeSpec& lattice, std::uint64_t seed, int th
 // The same with any half-width h >= 0 (length units); the domain is [0,1]^N, points may leave it.
 PointSet jittered_lattice(const LatticeSpec& lattice, double half_width, std::uint64_t seed, int threads);
 
+// Stratified jitter in the unit ball of the lattice's cube (centre 1/2, radius 1/2): the sites strictly
+// inside it (CNJ's start set in the ball, in lattice order), each plus an offset uniform in [-h, h]^N, h =
+// jitter_half_width(lattice); an offset that leaves the ball is drawn again (from the words of (seed,
+// site, attempt)), up to 4096 times, after which the point stays at its site. Domain: that ball.
+PointSet jittered_sites_in_ball(const LatticeSpec& lattice, std::uint64_t seed, int threads);
+
 // How jitter keeps a lattice in the unit cube when an offset reaches past a face: wrap (the torus
 // [0,1)^N, every coordinate taken modulo 1) or reflect (the cube [0,1]^N, folded back at the face as
 // a mirror would: the face then acts like a mirror plane of the jittered lattice).

@@ -46,11 +46,11 @@ std::string method_names() {
 
 Protocol parse_protocol(std::string_view name) {
   if (name == "paper") return Protocol::paper;
-  if (name == "unit") return Protocol::unit;
-  throw std::invalid_argument("unknown protocol " + quote_for_message(name) + " (allowed: paper, unit)");
+  if (name == "fair") return Protocol::fair;
+  throw std::invalid_argument("unknown protocol " + quote_for_message(name) + " (allowed: fair, paper)");
 }
 
-std::string_view to_string(Protocol protocol) { return protocol == Protocol::paper ? "paper" : "unit"; }
+std::string_view to_string(Protocol protocol) { return protocol == Protocol::paper ? "paper" : "fair"; }
 
 std::uint64_t LatticeSpec::point_count() const {
   if (grid < 2) throw std::invalid_argument("grid must be at least 2, got " + std::to_string(grid));
@@ -70,6 +70,12 @@ double LatticeSpec::spacing() const {
 
 double LatticeSpec::coordinate(int i) const {
   return protocol == Protocol::paper ? 0.5 * kPaperDelta + i * spacing() : (i + 0.5) / grid;
+}
+
+Box LatticeSpec::cells() const {
+  if (protocol == Protocol::fair) return Box{0.0, 1.0};
+  const double h = spacing();
+  return Box{coordinate(0) - 0.5 * h, static_cast<double>(grid) * h};
 }
 
 void LatticeSpec::point(std::uint64_t index, double* out) const {

@@ -21,6 +21,12 @@ struct LatticeSpec {
   // paper: linspace(delta/2, 1 - delta/2, K) with delta = 0.1 (so the spacing is 0.9/(K-1): 0.1 for
   // K = 10, 0.15 for K = 7, 0.18 for K = 6); unit: cell centres (i + 1/2) / K.
   double coordinate(int i) const;
+  // The box the lattice's K^N cells fill, each site at the centre of its cube of side spacing():
+  // [coordinate(0) - h/2, coordinate(K-1) + h/2]^N. The unit lattice's is [0,1]^N; the paper's is
+  // wider than the unit cube where its spacing exceeds delta (6D, K = 7: [-0.025, 1.025]^6, 1.05^6 =
+  // 1.34 times its volume; 7D, K = 6: [-0.04, 1.04]^7, 1.71 times). A jittered lattice's density is one
+  // point per cell, points / this box's volume, not points / the unit cube's.
+  Box cells() const;
   // Point `index` (mixed radix, axis 0 fastest) into out[0..N).
   void point(std::uint64_t index, double* out) const;
 };

@@ -14,9 +14,11 @@ Method parse_method(std::string_view name);  // throws std::invalid_argument lis
 std::string_view to_string(Method method);
 std::string method_names();  // "cnj, jitter, jitter-matched, ..."
 
-// paper: Section 5.1 exactly as data/PROTOCOL.md establishes it. unit: every method in the unit
-// cube at the density of a cell-centred K^N lattice.
-enum class Protocol { paper, unit };
+// fair (the main job's): every method in the run's one domain (core/domain.hpp: the unit torus, cube,
+// ball or sphere) at one count, the K^N sites of a cell-centred lattice in it (its spacing 1/K), measured
+// in that domain's metric. paper: Section 5.1 exactly as data/PROTOCOL.md establishes it, for every
+// method: the paper's lattice, boxes and densities in the cube, Euclidean distances.
+enum class Protocol { fair, paper };
 Protocol parse_protocol(std::string_view name);
 std::string_view to_string(Protocol protocol);
 

@@ -27,6 +27,11 @@ void PoissonDiskOptions::validate(int dimension) const {
   if (candidates < 1) throw std::invalid_argument("PDS candidates must be at least 1");
   if (!std::isfinite(domain.lo) || !std::isfinite(domain.side) || domain.side <= 0.0)
     throw std::invalid_argument("PDS domain must be a finite box with positive side");
+  if (domain.kind == DomainKind::sphere) throw std::invalid_argument("PDS samples a torus, a cube or a ball, not the sphere");
+  // On the torus a point must not meet its own image, and each pair has one nearest image.
+  if (domain.periodic() && !(radius < 0.5 * domain.side))
+    throw std::invalid_argument("PDS radius " + std::to_string(radius) + " on the torus must be below half its side (" +
+                                std::to_string(domain.side) + ")");
   const double cells = std::ceil(domain.side / radius);
   const double max_cells = std::ldexp(1.0, 64 / dimension) - 1.0;
   if (cells > max_cells)
@@ -140,9 +145,16 @@ struct OverflowPoint {
 template <int N>
 class CellGrid {
  public:
-  CellGrid(const Box& domain, double radius, bool dense, std::uint64_t max_points)
-      : lo_(domain.lo), cell_(radius), r2_(radius * radius), dense_(dense) {
+  CellGrid(const Domain& domain, double radius, bool dense, std::uint64_t max_points)
+      : lo_(domain.lo), cell_(radius), r2_(radius * radius), dense_(dense), periodic_(domain.periodic()),
+        side_(domain.side) {
     cells_per_axis_ = static_cast<std::int64_t>(std::max(1.0, std::ceil(domain.side / radius)));
+    if (periodic_) {
+      // The torus: whole cells that tile it, of side side / floor(side / r) >= r, so that the neighbours
+      // -1, 0, +1 across the identified faces still hold every point within r (r < side / 2: at least 2).
+      cells_per_axis_ = static_cast<std::int64_t>(std::floor(domain.side / radius));
+      cell_ = domain.side / static_cast<double>(cells_per_axis_);
+    }
     std::uint64_t capacity = 0;  // cell records
     if (dense_) {
       std::uint64_t stride = 1;
@@ -298,7 +310,7 @@ class CellGrid {
     int axes = 0;
     for (int j = 0; j < N; ++j) {  // insertion by distance; axes at the grid's edge on the near side have no cell there
       const bool down = q.below2[j] <= q.above2[j];
-      if (down ? q.cell[j] == 0 : q.cell[j] + 1 == cells_per_axis_) continue;
+      if (!periodic_ && (down ? q.cell[j] == 0 : q.cell[j] + 1 == cells_per_axis_)) continue;
       const double d2 = down ? q.below2[j] : q.above2[j];
       int m = axes++;
       for (; m > 0 && near2[m - 1] > d2; --m) {
@@ -306,7 +318,7 @@ class CellGrid {
         step[m] = step[m - 1];
       }
       near2[m] = d2;
-      step[m] = down ? -static_cast<std::int64_t>(stride_[j]) : static_cast<std::int64_t>(stride_[j]);
+      step[m] = static_cast<std::int64_t>(down ? step_down(q, j) : step_up(q, j));
     }
     if (leaf(q.base)) return true;
     const double limit2 = kFirstPass * r2_;
@@ -355,12 +367,13 @@ class CellGrid {
     out[0] = {0.0, 0};
     for (int j = First; j < Last; ++j) {
       const int before = count;
-      const bool can_down = q.cell[j] > 0, can_up = q.cell[j] + 1 < cells_per_axis_;
+      const bool can_down = periodic_ || q.cell[j] > 0, can_up = periodic_ || q.cell[j] + 1 < cells_per_axis_;
+      const std::uint64_t down_step = step_down(q, j), up_step = step_up(q, j);
       for (int i = 0; i < before; ++i) {
         const Part p = out[i];
         const double down = p.bound2 + q.below2[j], up = p.bound2 + q.above2[j];
-        if (can_down && down < r2_) out[count++] = {down, p.key - stride_[j]};
-        if (can_up && up < r2_) out[count++] = {up, p.key + stride_[j]};
+        if (can_down && down < r2_) out[count++] = {down, p.key + down_step};
+        if (can_up && up < r2_) out[count++] = {up, p.key + up_step};
       }
     }
     return count;
@@ -396,8 +409,26 @@ class CellGrid {
 
   bool closer_than_radius(const double* x, const double* y) const {
     double dist2 = 0.0;
+    if (periodic_) {  // the minimum image
+      for (int j = 0; j < N; ++j) {
+        double d = std::abs(x[j] - y[j]);
+        if (d > 0.5 * side_) d = side_ - d;
+        dist2 += d * d;
+      }
+      return dist2 < r2_;
+    }
     for (int j = 0; j < N; ++j) dist2 += (x[j] - y[j]) * (x[j] - y[j]);
     return dist2 < r2_;
+  }
+
+  // The key offsets of the neighbouring cell below and above x's cell on axis j (modulo 2^64): across
+  // the identified faces on the torus, from the first cell to the last and back.
+  std::uint64_t step_down(const Query& q, int j) const {
+    return periodic_ && q.cell[j] == 0 ? static_cast<std::uint64_t>(cells_per_axis_ - 1) * stride_[j] : -stride_[j];
+  }
+  std::uint64_t step_up(const Query& q, int j) const {
+    return periodic_ && q.cell[j] + 1 == cells_per_axis_ ? -(static_cast<std::uint64_t>(cells_per_axis_ - 1) * stride_[j])
+                                                         : stride_[j];
   }
 
   // Hashed: open addressing from packed cell coordinates (stored + 1; 0 marks an empty slot) to ids.
@@ -422,6 +453,8 @@ class CellGrid {
 
   double lo_, cell_, r2_;
   bool dense_;
+  bool periodic_;  // the torus: neighbours across the identified faces, minimum-image distances
+  double side_;
   std::int64_t cells_per_axis_;
   std::uint64_t stride_[N];
   // By cell id: the record, a bit that says whether it holds a point (1/1000 of the records: it stays
@@ -488,7 +521,7 @@ class QueueProcess {
  public:
   QueueProcess(const PoissonDiskOptions& options, std::uint64_t seed, std::uint64_t max_points,
                const FractionProgress& progress, PointSet& points)
-      : box_(options.domain),
+      : domain_(options.domain),
         r_(options.radius),
         k_(static_cast<std::uint64_t>(options.candidates)),
         max_points_(max_points),
@@ -538,8 +571,8 @@ class QueueProcess {
     for (std::uint64_t attempt = 0;; ++attempt) {
       RandomWords words{hash_combine(hash_combine(key_, 0), attempt)};
       double x[N];
-      for (int j = 0; j < N; ++j) x[j] = box_.lo + box_.side * bits_to_unit(words());
-      if (box_.contains(x, N)) {
+      for (int j = 0; j < N; ++j) x[j] = domain_.lo + domain_.side * bits_to_unit(words());
+      if (domain_.contains(x, N)) {
         place(x);
         break;
       }
@@ -573,7 +606,8 @@ class QueueProcess {
         RandomWords words{hash_combine(visit_key, t)};
         uniform_in_annulus<N>(words, normal_, r_, candidate);
         for (int j = 0; j < N; ++j) candidate[j] += parent[j];
-        inside = box_.contains(candidate, N);
+        if (domain_.periodic()) domain_.wrap(candidate, N);  // the torus: every candidate is in it
+        inside = domain_.contains(candidate, N);
         if (inside) grid_.prefetch(candidate);
       }
       const double* previous = candidates[(t + 1) % 2];
@@ -636,12 +670,8 @@ class QueueProcess {
   // its check is closer than r.
   bool clear_since(const double* x, std::uint32_t since) const {
     if (points_ - since <= kDirectRecentPoints) {
-      for (std::size_t p = since; p < points_; ++p) {
-        const double* y = points_store_[p].x;
-        double dist2 = 0.0;
-        for (int j = 0; j < N; ++j) dist2 += (x[j] - y[j]) * (x[j] - y[j]);
-        if (dist2 < r_ * r_) return false;
-      }
+      for (std::size_t p = since; p < points_; ++p)
+        if (domain_.distance2(x, points_store_[p].x, N) < r_ * r_) return false;  // minimum image on the torus
       return true;
     }
     return !grid_.conflicts_since(x, since);
@@ -712,7 +742,7 @@ class QueueProcess {
     if (!stopped_) candidates_tried_ = queued_ * k_;  // the queue emptied: every entry was visited
   }
 
-  const Box box_;
+  const Domain domain_;
   const double r_;
   const std::uint64_t k_;
   const std::uint64_t max_points_;
@@ -752,12 +782,87 @@ PoissonDiskResult poisson_disk(const PoissonDiskOptions& options, std::uint64_t 
   const auto [candidates, stopped] = process.run(resolve_threads(threads));
   result.candidates_tried = candidates;
   result.reached_max_points = stopped;
+  result.radius = options.radius;
   return result;
 }
 
 PoissonDiskResult poisson_disk(int dimension, const PoissonDiskOptions& options, std::uint64_t seed, int threads,
                                const FractionProgress& progress) {
   return dispatch_dimension(dimension, [&]<int N>() { return poisson_disk<N>(options, seed, threads, progress); });
+}
+
+namespace {
+// points * r^N / volume of saturated sets on the unit torus, k = 30: the median of 5 seeds at about
+// 2^17 points (2^21 in 2D), data/poisson_disk_saturation.md (bench/pds_saturation).
+constexpr double kSaturationDensity2 = 0.623730, kSaturationDensity3 = 0.587964, kSaturationDensity4 = 0.582974,
+                 kSaturationDensity5 = 0.612240, kSaturationDensity6 = 0.681006, kSaturationDensity7 = 0.800076,
+                 kSaturationDensity8 = 0.986418;
+}  // namespace
+
+namespace {
+// The boundary term B of saturated sets in the unit cube and ball, whose faces hold more points than the
+// torus' density: points = D V / r^N (1 + B (2N / side) r) (2N / side: the boundary's area over the
+// volume, for the cube and its inscribed ball alike); the median of 3 seeds at about 2^17 points,
+// data/poisson_disk_saturation.md (bench/pds_saturation). Index: the dimension.
+constexpr double kCubeBoundaryTerm[9] = {0, 0, 0.3285, 0.2091, 0.1878, 0.1715, 0.1554, 0.1379, 0.1198};
+constexpr double kBallBoundaryTerm[9] = {0, 0, 0.1818, 0.2042, 0.1929, 0.1751, 0.1595, 0.1460, 0.1343};
+}  // namespace
+
+double poisson_disk_saturation_points(int dimension, const Domain& domain, double radius) {
+  const double boundary_term = domain.kind == DomainKind::cube   ? kCubeBoundaryTerm[dimension]
+                               : domain.kind == DomainKind::ball ? kBallBoundaryTerm[dimension]
+                                                                 : 0.0;
+  return poisson_disk_saturation_density(dimension) * domain.measure(dimension) / std::pow(radius, dimension) *
+         (1.0 + boundary_term * 2.0 * dimension / domain.side * radius);
+}
+
+double poisson_disk_saturation_density(int dimension) {
+  // points * r^N / volume of saturated sets on the unit torus, k = 30 (data/poisson_disk_saturation.md).
+  switch (dimension) {
+    case 2: return kSaturationDensity2;
+    case 3: return kSaturationDensity3;
+    case 4: return kSaturationDensity4;
+    case 5: return kSaturationDensity5;
+    case 6: return kSaturationDensity6;
+    case 7: return kSaturationDensity7;
+    case 8: return kSaturationDensity8;
+    default: throw std::invalid_argument("Poisson disk sampling covers dimensions 2..8, not " + std::to_string(dimension));
+  }
+}
+
+PoissonDiskResult poisson_disk_reaching(int dimension, const PoissonDiskOptions& options, std::uint64_t seed, int threads,
+                                        const FractionProgress& progress) {
+  const std::uint64_t target = options.max_points;
+  if (target == 0 || target == std::numeric_limits<std::uint64_t>::max())
+    throw std::invalid_argument("a Poisson disk radius search needs the count to reach (max_points)");
+  const double n = static_cast<double>(target);
+  PoissonDiskOptions run = options;
+  // The saturation radius, where poisson_disk_saturation_points gives n: the torus' r = (D V / n)^(1/N),
+  // then the boundary term's few per cent by fixed-point steps (each shrinks the error by about 1/N).
+  double radius = std::pow(poisson_disk_saturation_density(dimension) * options.domain.measure(dimension) / n, 1.0 / dimension);
+  for (int step = 0; step < 20; ++step)
+    radius *= std::pow(poisson_disk_saturation_points(dimension, options.domain, radius) / n, 1.0 / dimension);
+  run.radius = radius * (1.0 - kReachingMargin);  // the first run: kReachingMargin below it
+  if (options.domain.periodic()) run.radius = std::min(run.radius, 0.49 * options.domain.side);
+  // One stage for all the runs: the fraction never goes back when a run starts again.
+  double reported = 0.0;
+  const FractionProgress monotone = [&](double f) {
+    reported = std::max(reported, f);
+    if (progress) progress(reported);
+  };
+  for (int attempt = 1; attempt <= kMaxReachingRuns; ++attempt) {
+    // The first run takes the seed itself (so --pds-radius with the radius found gives the same set), a
+    // later run a seed of its own, (seed, attempt): its radius depends on the runs before.
+    const std::uint64_t run_seed = attempt == 1 ? seed : hash_combine(seed, static_cast<std::uint64_t>(attempt));
+    PoissonDiskResult result = poisson_disk(dimension, run, run_seed, threads, monotone);
+    result.runs = attempt;
+    if (result.reached_max_points) return result;
+    // Saturated with m < n points: m r^N ~ n r'^N.
+    const double m = static_cast<double>(std::max<std::size_t>(result.points.size(), 1));
+    run.radius *= std::pow(m / n, 1.0 / dimension) * (1.0 - kReachingMargin);
+  }
+  throw std::runtime_error("Poisson disk sampling did not reach " + std::to_string(target) + " points in " +
+                           std::to_string(kMaxReachingRuns) + " runs of decreasing radius");
 }
 
 }  // namespace dfvn

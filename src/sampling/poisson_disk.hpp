@@ -18,10 +18,12 @@ namespace dfvn {
 enum class PoissonDiskGrid { automatic, dense, hashed };
 
 struct PoissonDiskOptions {
-  double radius = 0.1;     // no two points closer than this
+  double radius = 0.1;     // no two points closer than this (on the torus: in its minimum-image metric)
   int candidates = 30;     // Bridson's k: candidates thrown per visit of a point
   std::uint64_t max_points = std::numeric_limits<std::uint64_t>::max();  // stop once this many are placed
-  Box domain;
+  // The cube, the torus (candidates wrap around it and distances are minimum-image ones, as UTK's
+  // toroidal Bridson sampler; the radius at most half the side) or the ball inscribed in the cube.
+  Domain domain;
   PoissonDiskGrid grid = PoissonDiskGrid::automatic;
 
   void validate(int dimension) const;  // throws std::invalid_argument naming the option
@@ -31,6 +33,8 @@ struct PoissonDiskResult {
   PointSet points;
   std::uint64_t candidates_tried = 0;  // k per visit, up to the candidate that placed the last point
   bool reached_max_points = false;     // false: the active list emptied first (the set is saturated)
+  double radius = 0.0;                 // the radius of the run (poisson_disk_reaching: the one it found)
+  int runs = 1;                        // poisson_disk_reaching: the processes it ran
 };
 
 // Bridson's algorithm with the active list as a first-in first-out queue of visits. Start from one
@@ -63,5 +67,28 @@ PoissonDiskResult poisson_disk(const PoissonDiskOptions& options, std::uint64_t 
 
 PoissonDiskResult poisson_disk(int dimension, const PoissonDiskOptions& options, std::uint64_t seed, int threads = 0,
                                const FractionProgress& progress = {});
+
+// The saturation density of the process above: a set that ran until its queue emptied holds about
+// D_N V / r^N points in a domain of volume V at radius r (on the torus, which has no boundary, exactly
+// so up to fluctuations of a few tenths of a percent). Measured for k = 30 candidates in 2D-8D; the
+// measurements and the command are in data/poisson_disk_saturation.md.
+double poisson_disk_saturation_density(int dimension);
+// The points of a saturated set at radius r in `domain`: D V / r^N on the torus; in the cube and the ball,
+// whose faces hold more, times (1 + B (2N / side) r) with the boundary term B measured alike (the same
+// record).
+double poisson_disk_saturation_points(int dimension, const Domain& domain, double radius);
+
+// Poisson disk points at the largest radius the process reaches options.max_points with (options.radius
+// is ignored): the first run takes the radius at which the saturation density above gives max_points,
+// less kReachingMargin (from poisson_disk_saturation_points); a run whose queue empties first with m
+// points is followed by one at its radius times (m / max_points)^(1/N), less the margin, until one
+// reaches the count (at most kMaxReachingRuns). The result is that last run, at one radius throughout,
+// with the radius and the runs it took: a process at r / (1 - kReachingMargin) would saturate short of
+// the count (within the tables' fluctuations, data/poisson_disk_saturation.md). Throws
+// std::runtime_error when no run within kMaxReachingRuns reaches the count.
+inline constexpr double kReachingMargin = 0.002;
+inline constexpr int kMaxReachingRuns = 8;
+PoissonDiskResult poisson_disk_reaching(int dimension, const PoissonDiskOptions& options, std::uint64_t seed,
+                                        int threads = 0, const FractionProgress& progress = {});
 
 }  // namespace dfvn

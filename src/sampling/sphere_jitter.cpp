@@ -13,22 +13,14 @@
 
 namespace dfvn {
 
-Surface parse_surface(std::string_view name) {
-  if (name == "none") return Surface::none;
-  if (name == "sphere") return Surface::sphere;
-  throw std::invalid_argument("unknown surface " + quote_for_message(name) + " (allowed: none, sphere)");
-}
-
-std::string_view to_string(Surface surface) { return surface == Surface::none ? "none" : "sphere"; }
-
 double sphere_start_spacing(int grid) { return 2.0 / grid; }
 
 PointSet sphere_start_set(int dimension, int grid) {
   if (dimension < 3) throw std::invalid_argument(fmt::format("points on the sphere need N >= 3, got {}", dimension));
-  const LatticeSpec lattice{dimension, grid, Protocol::unit};  // (i + 1/2) / K in [0, 1]
+  const LatticeSpec lattice{dimension, grid, Protocol::fair};  // (i + 1/2) / K in [0, 1]
   const double h = sphere_start_spacing(grid);
   const std::uint64_t count = lattice.point_count();
-  PointSet out{dimension, {}, Box{-1.0, 2.0}};
+  PointSet out{dimension, {}, Domain::unit(DomainKind::sphere)};
   std::vector<double> x(static_cast<std::size_t>(dimension));
   for (std::uint64_t i = 0; i < count; ++i) {
     lattice.point(i, x.data());
@@ -81,7 +73,7 @@ static SphereCnjResult sphere_curl_noise_jitter(int grid, const CnjOptions& requ
 CnjOptions sphere_cnj_options(const CnjOptions& options) {
   CnjOptions bound = options;
   bound.domain_mode = DomainMode::conformant;
-  bound.domain = CnjDomain::cube;  // not used on the sphere; the torus would ask for a periodic basis
+  bound.domain = DomainKind::sphere;
   return bound;
 }
 
@@ -94,7 +86,7 @@ SphereCnjResult sphere_curl_noise_jitter(int dimension, int grid, const CnjOptio
 }
 
 PointSet uniform_points_on_sphere(int dimension, std::uint64_t count, std::uint64_t seed, int threads) {
-  PointSet out{dimension, Coordinates(count * static_cast<std::uint64_t>(dimension)), Box{-1.0, 2.0}};
+  PointSet out{dimension, Coordinates(count * static_cast<std::uint64_t>(dimension)), Domain::unit(DomainKind::sphere)};
 #pragma omp parallel for schedule(static) num_threads(resolve_threads(threads))
   for (std::int64_t i = 0; i < static_cast<std::int64_t>(count); ++i) {
     double* x = out.coordinates.data() + static_cast<std::size_t>(i) * dimension;

@@ -12,11 +12,6 @@
 
 namespace dfvn {
 
-// none: points fill a domain; sphere: points on the unit sphere S^{N-1}, N >= 3.
-enum class Surface { none, sphere };
-Surface parse_surface(std::string_view name);  // "none" | "sphere"
-std::string_view to_string(Surface surface);
-
 // The start set: the cell-centred K^N lattice on [-1, 1]^N (spacing h = 2/K), its points in the shell
 // 1 - h/2 <= |x| < 1 + h/2, projected radially. The shell holds one lattice layer around the sphere
 // in every direction, so the projected points cover it evenly, about area(S^{N-1}) / h^(N-1) of them

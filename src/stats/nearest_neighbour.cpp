@@ -91,7 +91,8 @@ NearestNeighbourSummary summarize_nearest_neighbours(std::vector<double> distanc
     for (double* value : {&s.min, &s.median, &s.q01, &s.mean}) *value *= scale;
     return s;
   }
-  return summarize_nearest_neighbours(std::move(distances), points.domain.volume(points.dimension), points.dimension);
+  return summarize_nearest_neighbours(std::move(distances), points.domain.measure(points.dimension),
+                                      points.domain.manifold_dimension(points.dimension));
 }
 
 NearestNeighbourSummary summarize_nearest_neighbours(std::vector<double> distances, double measure,

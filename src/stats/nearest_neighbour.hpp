@@ -45,8 +45,9 @@ struct NearestNeighbourSummary {
   double median = 0.0;  // the mean of the two middle values for an even count (as numpy.median)
   double q01 = 0.0;     // the 1% quantile (numpy.quantile's default linear interpolation)
   double mean = 0.0;
-  // median * (points / domain volume)^(1/N): the median in units of the mean spacing, so that sets
-  // of different density compare (a cubic lattice scores 1).
+  // median * (points / domain measure)^(1/M): the median in units of the mean spacing, so that sets
+  // of different density compare (a cubic lattice scores 1); M the dimension of the domain (N, or N - 1
+  // on the sphere), the measure its volume or area (core/domain.hpp).
   double median_scaled = 0.0;
 };
 

@@ -10,6 +10,7 @@
 #include "dfvn/core/stopwatch.hpp"
 #include "dfvn/io/csv.hpp"
 #include "dfvn/stats/distance_scale.hpp"
+#include "dfvn/stats/geodesic.hpp"
 #include "dfvn/stats/periodic_neighbours.hpp"
 
 namespace dfvn {
@@ -34,15 +35,35 @@ std::vector<double> nearest_neighbour_distances_any_dimension(const PointSet& po
   return distances;
 }
 
+std::vector<double> nearest_neighbour_distances_in_domain(const PointSet& points, KnnBackend backend, int threads,
+                                                          const FractionProgress& progress) {
+  switch (points.domain.kind) {
+    case DomainKind::torus: return periodic_nearest_neighbour_distances(points, threads, progress);
+    case DomainKind::sphere: {
+      std::vector<double> angles = geodesic_nearest_neighbour_distances(points, backend, threads);
+      if (progress) progress(1.0);
+      return angles;
+    }
+    case DomainKind::cube:
+    case DomainKind::ball: break;
+  }
+  return nearest_neighbour_distances_any_dimension(points, backend, threads, progress);
+}
+
 void check_point_set(const PointSet& points) {
   if (points.size() < 2) throw std::invalid_argument(fmt::format("the set has {} point(s); at least 2 are needed", points.size()));
   check_domain_side(points.domain.side);
-  for (std::size_t i = 0; i < points.size(); ++i)
-    for (int k = 0; k < points.dimension; ++k)
-      if (!points.domain.contains(points.point(i) + k, 1))
+  const Box box = points.domain.box();
+  const bool sphere = points.domain.kind == DomainKind::sphere;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (int k = 0; k < points.dimension && !sphere; ++k)
+      if (!box.contains(points.point(i) + k, 1))
         throw std::invalid_argument(fmt::format(
             "point {} (0-based) has x{} = {:.17g}, outside the domain [{:g}, {:g}]^{}; give the side with --domain-side", i,
-            k, points.point(i)[k], points.domain.lo, points.domain.lo + points.domain.side, points.dimension));
+            k, points.point(i)[k], box.lo, box.lo + box.side, points.dimension));
+    if (!points.domain.contains(points.point(i), points.dimension))
+      throw std::invalid_argument(fmt::format("point {} (0-based) lies outside {}", i, points.domain.describe(points.dimension)));
+  }
 }
 
 PointSetStatistics measure_point_set(const PointSet& points, const PointSetStatisticsOptions& options,
@@ -54,10 +75,9 @@ PointSetStatistics measure_point_set(const PointSet& points, const PointSetStati
     if (progress) progress("statistics", f);
   };
   report(0.0);
-  std::vector<double> distances =
-      options.periodic ? periodic_nearest_neighbour_distances(points, options.threads, report)
-                       : nearest_neighbour_distances_any_dimension(points, options.knn, options.threads, report);
-  if (points.dimension > 1) check_nearest_neighbours_resolved(points, distances);  // 1D needs no squares
+  std::vector<double> distances = nearest_neighbour_distances_in_domain(points, options.knn, options.threads, report);
+  // 1D needs no squares; the sphere's angles come from unit vectors
+  if (points.dimension > 1 && points.domain.kind != DomainKind::sphere) check_nearest_neighbours_resolved(points, distances);
   out.nearest = summarize_nearest_neighbours(std::move(distances), points);
   if (options.discrepancy) {
     for (std::size_t d = 0; d < std::size(kAllDiscrepancies); ++d) {
@@ -95,7 +115,7 @@ std::vector<double> point_statistics_stage_weights(const PointSetStatisticsOptio
 std::string point_statistics_csv_header() {
   std::string header =
       "input,set,dim,points,nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,median_displacement,"
-      "frac_unmoved,neighbour_disorder,lattice_order,seconds_stats,domain_side";
+      "frac_unmoved,neighbour_disorder,lattice_order,seconds_stats,domain,domain_side";
   for (DiscrepancyKind kind : kAllDiscrepancies) header += "," + std::string(csv_column(kind));
   return header + ",stat\n";
 }
@@ -103,10 +123,11 @@ std::string point_statistics_csv_header() {
 std::string point_statistics_csv_row(std::string_view input, std::string_view set, const PointSet& points,
                                      const PointSetStatistics& s, bool timing) {
   // The five displacement columns stay empty: there are no lattice sites.
-  std::string row = fmt::format("{},{},{},{},{},{},{},{},{},,,,,,{},{}", csv_quoted(input), set, points.dimension, s.nearest.points,
-                                format_real(s.nearest.min), format_real(s.nearest.q01), format_real(s.nearest.median),
-                                format_real(s.nearest.mean), format_real(s.nearest.median_scaled),
-                                timing ? fmt::format("{:.6f}", s.seconds) : std::string(), format_real(points.domain.side));
+  std::string row = fmt::format("{},{},{},{},{},{},{},{},{},,,,,,{},{},{}", csv_quoted(input), set, points.dimension,
+                                s.nearest.points, format_real(s.nearest.min), format_real(s.nearest.q01),
+                                format_real(s.nearest.median), format_real(s.nearest.mean),
+                                format_real(s.nearest.median_scaled), timing ? fmt::format("{:.6f}", s.seconds) : std::string(),
+                                to_string(points.domain.kind), format_real(points.domain.side));
   for (const auto& value : s.discrepancies) {
     row += ',';
     if (value) row += format_real(*value, 17);

@@ -16,11 +16,13 @@
 
 namespace dfvn {
 
+// The set's domain (PointSet::domain) decides the metric: minimum-image distances on the torus
+// (stats/periodic_neighbours.hpp), great-circle angles on the sphere (stats/geodesic.hpp), Euclidean
+// distances in the cube and the ball.
 struct PointSetStatisticsOptions {
   bool discrepancy = false;  // O(n^2): only when asked
   KnnBackend knn = KnnBackend::nanoflann;
   int threads = 0;
-  bool periodic = false;  // minimum-image distances on the torus of the box (stats/periodic_neighbours.hpp)
 };
 
 struct PointSetStatistics {
@@ -33,6 +35,11 @@ struct PointSetStatistics {
 // otherwise nearest_neighbour_distances(). Needs at least 2 points.
 std::vector<double> nearest_neighbour_distances_any_dimension(const PointSet& points, KnnBackend backend, int threads,
                                                               const FractionProgress& progress = {});
+
+// Every point's distance to its nearest other point in the metric of points.domain (above). Needs at
+// least 2 points; independent of thread count.
+std::vector<double> nearest_neighbour_distances_in_domain(const PointSet& points, KnnBackend backend, int threads,
+                                                          const FractionProgress& progress = {});
 
 // Throws std::invalid_argument if a point lies outside points.domain (naming the point and axis) or
 // there are fewer than 2 points.

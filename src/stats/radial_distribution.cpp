@@ -25,10 +25,6 @@ void RdfOptions::validate() const {
   if (bins < 1 || bins > 100000) throw std::invalid_argument("RDF bins must be in 1..100000");
 }
 
-double unit_ball_volume(int dimension) {
-  return std::pow(std::numbers::pi, 0.5 * dimension) / std::tgamma(0.5 * dimension + 1.0);
-}
-
 void check_rdf_resolution(int dimension, double side, double r_max, int bins) {
   // Each pair weight is at most 1 / (L - r_max)^N, since the overlap of the cube with its translate
   // by d is prod_a (L - |d_a|) and |d_a| <= r_max; with at most q (n - 1) pairs, which the
@@ -131,34 +127,55 @@ double RdfPairSums::sum(int bin) const {
   return std::ldexp(static_cast<double>(window), low + low_exponent_);
 }
 
+double ball_overlap_volume(int dimension, double radius, double distance) {
+  const double phi = std::acos(std::clamp(0.5 * distance / radius, 0.0, 1.0));
+  const double sine = std::sin(phi), cosine = std::cos(phi);
+  // J_0 = phi, J_1 = 1 - cos phi, J_m = -sin^(m-1) phi cos phi / m + (m - 1) / m J_(m-2).
+  double j_even = phi, j_odd = 1.0 - cosine, power = sine;  // power = sin^(m-1) for the m being computed
+  for (int m = 2; m <= dimension; ++m) {
+    double& j = m % 2 == 0 ? j_even : j_odd;
+    j = -power * cosine / m + (m - 1.0) / m * j;
+    power *= sine;
+  }
+  const double integral = dimension % 2 == 0 ? j_even : j_odd;
+  return 2.0 * unit_ball_volume(dimension - 1) * std::pow(radius, dimension) * integral;
+}
+
 RdfPairSums RdfPlan::empty_sums() const {
   if (periodic) return RdfPairSums(bins, 1.0, 1.0);  // the torus has no edge: every weight is 1
-  // w = 1 / prod_a (L - |d_a|) with |d_a| <= r_max: between 1 / L^N and 1 / (L - r_max)^N (halved and
-  // doubled against rounding).
+  // The weights lie between 1 / |W| (no shift) and 1 / |W intersect (W + d)| at |d| = r_max (halved and
+  // doubled against rounding): for the cube 1 / L^N and 1 / (L - r_max)^N, as |d_a| <= r_max.
   const double side = domain.side;
+  if (domain.kind == DomainKind::ball)
+    return RdfPairSums(bins, 0.5 / domain.measure(dimension), 2.0 / ball_overlap_volume(dimension, 0.5 * side, r_max));
   return RdfPairSums(bins, 0.5 / std::pow(side, dimension), 2.0 / std::pow(side - r_max, dimension));
 }
 
-RdfPlan plan_radial_distribution(int dimension, const Box& domain, std::uint64_t points, const RdfOptions& options) {
+RdfPlan plan_radial_distribution(int dimension, const Domain& domain, std::uint64_t points, const RdfOptions& options) {
   if (points < 2) throw std::invalid_argument("the RDF needs at least 2 points");
+  if (domain.kind == DomainKind::sphere)
+    throw std::invalid_argument("the RDF is for points in a torus, cube or ball, not on the sphere");
   RdfPlan plan;
   plan.dimension = dimension;
   plan.domain = domain;
   plan.points = points;
   plan.bins = options.bins;
-  plan.periodic = options.periodic;
+  plan.periodic = domain.periodic();
   const double side = domain.side;
-  const double volume = domain.volume(dimension);
+  const double volume = domain.measure(dimension);
   plan.r_max = options.r_max > 0.0 ? options.r_max
                                    : 2.5 * std::pow(volume / static_cast<double>(points), 1.0 / dimension);
-  if (options.periodic) {
+  if (plan.periodic) {
     // Below half the side, a pair has one minimum image within r_max: no pair is counted twice.
     if (options.r_max >= 0.5 * side)
       throw std::invalid_argument(fmt::format("a periodic RDF needs r_max below half the side ({:g}), got {:g}", 0.5 * side,
                                               options.r_max));
     if (plan.r_max >= 0.5 * side) plan.r_max = 0.499 * side;
   }
-  if (plan.r_max >= side) plan.r_max = 0.999 * side;  // the edge correction needs |d_a| < L
+  // The cube's edge correction needs |d_a| < L; the ball's lens, kept away from its vanishing at the
+  // diameter, at most the radius.
+  if (domain.kind == DomainKind::ball && plan.r_max > 0.5 * side) plan.r_max = 0.5 * side;
+  if (plan.r_max >= side) plan.r_max = 0.999 * side;
   check_rdf_resolution(dimension, side, plan.r_max, options.bins);
   return plan;
 }
@@ -178,6 +195,7 @@ template <int N>
 void count_rdf_pairs_impl(const PointSet& points, const std::vector<std::uint32_t>& queries, const RdfPlan& plan,
                           RdfPairSums& sums, int threads, const FractionProgress& progress) {
   const double side = points.domain.side;
+  const bool ball = points.domain.kind == DomainKind::ball;
   const PointSetAdaptor<N> adaptor{points};
   const KdTree<N> tree(N, adaptor, kd_tree_params());  // built by its constructor
 
@@ -217,8 +235,10 @@ void count_rdf_pairs_impl(const PointSet& points, const std::vector<std::uint32_
             if (!(dist2 < r2)) continue;
             const auto bin = static_cast<int>(std::sqrt(dist2) / bin_width);
             if (bin >= bins) continue;
-            double overlap = 1.0;  // |W intersect (W + d)| for the cube of side L; the torus has no edge
-            if (!plan.periodic)
+            double overlap = 1.0;  // |W intersect (W + d)|; the torus has no edge
+            if (ball)
+              overlap = ball_overlap_volume(N, 0.5 * side, std::sqrt(dist2));
+            else if (!plan.periodic)
               for (int a = 0; a < N; ++a) overlap *= side - std::abs(x[a] - y[a]);
             local.add(bin, 1.0 / overlap);
           }
@@ -238,7 +258,7 @@ template <int N>
 RdfCurve radial_distribution_impl(const PointSet& points, const RdfOptions& options, std::uint64_t seed, int threads,
                                   const FractionProgress& progress) {
   const RdfPlan plan = plan_radial_distribution(N, points.domain, points.size(), options);
-  if (options.periodic) check_in_periodic_box(points);
+  if (plan.periodic) check_in_periodic_box(points);
   const RdfQueries is_query(options, seed, points.size());
   std::vector<std::uint32_t> queries;
   for (std::size_t i = 0; i < points.size(); ++i)
@@ -252,7 +272,7 @@ RdfCurve radial_distribution_impl(const PointSet& points, const RdfOptions& opti
 
 void count_rdf_pairs(const PointSet& set, const std::vector<std::uint32_t>& queries, const RdfPlan& plan,
                      RdfPairSums& sums, int threads, const FractionProgress& progress) {
-  if (set.dimension != plan.dimension || set.domain.lo != plan.domain.lo || set.domain.side != plan.domain.side)
+  if (set.dimension != plan.dimension || !(set.domain == plan.domain))
     throw std::logic_error("RDF pairs counted in a set of another dimension or box than the plan's");
   dispatch_dimension(set.dimension, [&]<int N>() { count_rdf_pairs_impl<N>(set, queries, plan, sums, threads, progress); });
 }
@@ -263,7 +283,7 @@ RdfCurve finish_radial_distribution(const RdfPlan& plan, const RdfPairSums& sums
   curve.r_max = plan.r_max;
   curve.queries = queries;
   const double bin_width = plan.r_max / bins;
-  const double volume = plan.domain.volume(n);
+  const double volume = plan.domain.measure(n);
   curve.r.resize(static_cast<std::size_t>(bins));
   curve.g.assign(static_cast<std::size_t>(bins), 0.0);
   const double ball = unit_ball_volume(n);

@@ -1,4 +1,5 @@
-// Radial distribution function g(r) of a point set in a box, with translation edge correction.
+// Radial distribution function g(r) of a point set in its domain: periodic on the torus, with
+// translation edge correction in the cube and the ball.
 #pragma once
 
 #include <cstdint>
@@ -15,9 +16,6 @@ struct RdfOptions {
   // Query points: all when the set is no larger, otherwise a seeded random subset of about this many
   // (each query still counts its pairs with every other point). 0: all points.
   std::uint64_t max_queries = 20000;
-  // The torus: minimum-image distances in the box (opposite faces identified), no edge correction;
-  // r_max must be below half the side (0: 2.5 mean spacings, capped at 0.499 side).
-  bool periodic = false;
 
   void validate() const;  // throws std::invalid_argument naming the option
 };
@@ -30,12 +28,15 @@ struct RdfCurve {
 };
 
 // g(r) = V^2 / (q (n - 1)) * sum over ordered pairs (i in queries, j != i) with |x_i - x_j| in the bin
-// of w_ij, divided by the N-ball shell volume of the bin; w_ij = 1 / prod_a (L - |x_ia - x_ja|) is the
-// translation edge correction (Ohser and Stoyan 1981) for the cube of side L and volume V. For
-// uniform random points E[g(r)] = 1 at every r, edges and all. (The paper's script divides by
-// shell volume x n x n on a unit volume without correction, so its curves tend to 0.5 and sag.)
-// Periodic: the pairs at minimum-image distance, w_ij = 1 (the torus has no edge); every coordinate
-// must lie in the box.
+// of w_ij, divided by the N-ball shell volume of the bin, V the volume of the set's domain: each set is
+// normalised by its own intensity n / V in the domain it fills (PointSet::domain; a lattice set's is the
+// box its cells fill, LatticeSpec::cells). w_ij = 1 / |W intersect (W + x_i - x_j)| is the translation
+// edge correction (Ohser and Stoyan 1981): prod_a (L - |x_ia - x_ja|) for the cube of side L, the lens
+// of two balls of radius R at distance |x_i - x_j| for the ball. For uniform random points E[g(r)] = 1
+// at every r, edges and all. (The paper's script divides by shell volume x n x n on a unit volume
+// without correction, so its curves tend to 0.5 and sag.) The torus: the pairs at minimum-image
+// distance, w_ij = 1 (it has no edge), r_max below half the side (0: 2.5 mean spacings, capped at 0.499
+// side); every coordinate must lie in the box. The sphere is refused.
 // Independent of thread count and of the order pairs are found in: the weights are summed exactly
 // (RdfPairSums) and rounded once. `progress`: query points done over query points.
 RdfCurve radial_distribution(const PointSet& points, const RdfOptions& options, std::uint64_t seed, int threads,
@@ -79,14 +80,18 @@ class RdfPairSums {
 // RdfOptions says), the bins, the torus or the cube. Throws std::invalid_argument as radial_distribution.
 struct RdfPlan {
   int dimension = 0;
-  Box domain;
+  Domain domain;
   std::uint64_t points = 0;
   double r_max = 0.0;
   int bins = 0;
-  bool periodic = false;
+  bool periodic = false;  // domain.periodic()
   RdfPairSums empty_sums() const;  // for this plan's weights
 };
-RdfPlan plan_radial_distribution(int dimension, const Box& domain, std::uint64_t points, const RdfOptions& options);
+RdfPlan plan_radial_distribution(int dimension, const Domain& domain, std::uint64_t points, const RdfOptions& options);
+
+// |B intersect (B + d)| for a ball B of radius R in N dimensions and |d| = distance < 2R: the lens of
+// two balls, 2 V_{N-1} R^N J_N(acos(distance / 2R)), J_N(phi) = integral_0^phi sin^N, by its recursion.
+double ball_overlap_volume(int dimension, double radius, double distance);
 
 // Whether point `index` of a set of `points` is one of the RDF's query points (by index: all of them when
 // options.max_queries is 0 or at least `points`, else a seeded subset of about max_queries).
@@ -115,8 +120,5 @@ RdfCurve finish_radial_distribution(const RdfPlan& plan, const RdfPairSums& sums
 // number of bins is finite for points in a cube of this side: a bin too narrow has a shell volume
 // that underflows, and --rdf-max 1e-300 gave NaN.
 void check_rdf_resolution(int dimension, double side, double r_max, int bins);
-
-// Volume of the unit ball in N dimensions, pi^(N/2) / Gamma(N/2 + 1).
-double unit_ball_volume(int dimension);
 
 }  // namespace dfvn

@@ -33,12 +33,12 @@ double largest_jump(const AnimationResult& a) {
 
 // Every frame of a conformant run: every particle inside (checked on the positions themselves, not
 // only on the counters), none entered or left, and the particles do move.
-void expect_conformant(int dimension, int grid, CnjDomain domain = CnjDomain::cube) {
+void expect_conformant(int dimension, int grid, DomainKind domain = DomainKind::cube) {
   AnimationOptions o = options_for(dimension, grid, DomainMode::conformant);
   o.cnj.domain = domain;
   const AnimationResult a = animate(o, 7, 0);
   ASSERT_EQ(a.frames.size(), 300u);
-  const Box box{0.0, 1.0, domain == CnjDomain::ball};
+  const Domain box = Domain::unit(domain);
   std::uint64_t kept = 0;
   for (int k = 0; k < o.frames; ++k) {
     const FrameStats& s = a.frames[static_cast<std::size_t>(k)];
@@ -57,7 +57,7 @@ void expect_conformant(int dimension, int grid, CnjDomain domain = CnjDomain::cu
 TEST(Animation, ConformantKeepsEveryParticleInside2D) { expect_conformant(2, 10); }
 TEST(Animation, ConformantKeepsEveryParticleInside3D) { expect_conformant(3, 5); }
 TEST(Animation, ConformantKeepsEveryParticleInside5D) { expect_conformant(5, 3); }
-TEST(Animation, ConformantKeepsEveryParticleInsideTheBall3D) { expect_conformant(3, 6, CnjDomain::ball); }
+TEST(Animation, ConformantKeepsEveryParticleInsideTheBall3D) { expect_conformant(3, 6, DomainKind::ball); }
 
 TEST(Animation, DropModePops) {
   for (int dimension : {2, 3}) {
@@ -120,7 +120,7 @@ TEST(Animation, FrameZeroIsCnj) {
   const AnimationResult a = animate(o, 5, 0);
   CnjOptions cnj = o.cnj;
   cnj.phase = 0.7;
-  const CnjResult c = curl_noise_jitter(LatticeSpec{3, 6, Protocol::unit}, cnj, 5, 0);
+  const CnjResult c = curl_noise_jitter(LatticeSpec{3, 6, Protocol::fair}, cnj, 5, 0);
   ASSERT_EQ(c.points.coordinates.size(), a.particles * 3);
   EXPECT_EQ(std::memcmp(c.points.coordinates.data(), a.frame(0), c.points.coordinates.size() * sizeof(double)), 0);
 }
@@ -139,7 +139,7 @@ TEST(Animation, StartSites) {
   o.drop_margin = 2;
   EXPECT_EQ(animation_start_sites(o).size(), (9u * 9 * 9 + 8u * 8 * 8) * 3);
   o.lattice = StartLattice::cubic;
-  o.cnj.domain = CnjDomain::ball;
+  o.cnj.domain = DomainKind::ball;
   o.cnj.domain_mode = DomainMode::conformant;
   const std::vector<double> ball = animation_start_sites(o);
   for (std::size_t i = 0; i < ball.size(); i += 3)
@@ -199,7 +199,7 @@ TEST(Animation, BadOptions) {
   refuses([](AnimationOptions& o) { o.frames = 0; });
   refuses([](AnimationOptions& o) { o.frames = AnimationOptions::kMaxFrames + 1; });
   refuses([](AnimationOptions& o) { o.dimension = 6; o.grid = 20; });  // 64 Mi particles x 300 frames
-  refuses([](AnimationOptions& o) { o.cnj.domain = CnjDomain::torus; });
+  refuses([](AnimationOptions& o) { o.cnj.domain = DomainKind::torus; });
   refuses([](AnimationOptions& o) { o.drop_margin = -1; });
   AnimationOptions fine;
   EXPECT_NO_THROW(fine.validate());

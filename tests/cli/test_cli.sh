@@ -100,28 +100,30 @@ fi
 
 # CNJ on the torus (the default), in a domain (Eq. 13 or the ramp) and on the sphere
 "$bin" --dim 4 --grid 6 --methods cnj --quiet --stats "$work/torus.csv" 2>"$work/err" && ok || bad "torus run: $(cat "$work/err")"
-# Columns: 4 points, 24 dropped, 31 notes.
-awk -F, '$3 == "cnj" && $4 == 1296 && $24 == "0" && /torus domain; conformant/ { found = 1 } END { exit !found }' "$work/torus.csv" &&
+# Columns: 4 points, 19 domain, 25 dropped, 32 notes.
+awk -F, '$3 == "cnj" && $4 == 1296 && $19 == "torus" && $25 == "0" && /noise; conformant"/ { found = 1 } END { exit !found }' "$work/torus.csv" &&
   ok || bad "torus CNJ keeps all 6^4 points: $(tail -1 "$work/torus.csv")"
 for bound in eq13 ramp; do
   "$bin" --dim 4 --grid 6 --methods cnj --domain cube --bound $bound --quiet --stats "$work/dom.csv" 2>"$work/err" &&
     ok || bad "conformant run: $(cat "$work/err")"
-  awk -F, '$3 == "cnj" && $4 == 1296 && $24 == "0" && /cube domain; conformant/ { found = 1 } END { exit !found }' "$work/dom.csv" &&
+  awk -F, '$3 == "cnj" && $4 == 1296 && $19 == "cube" && $25 == "0" && /noise; conformant"/ { found = 1 } END { exit !found }' "$work/dom.csv" &&
     ok || bad "conformant CNJ ($bound) keeps all 6^4 points: $(tail -1 "$work/dom.csv")"
 done
 "$bin" --dim 4 --grid 6 --methods cnj --domain cube --domain-mode drop --quiet --stats "$work/drop.csv" && ok || bad "drop run"
-grep -q "cube domain; drop" "$work/drop.csv" && ok || bad "drop mode named in the notes"
-"$bin" --dim 3 --grid 8 --methods cnj --domain ball --protocol unit --quiet --stats "$work/ball.csv" && ok || bad "ball run"
-awk -F, '$1 == 3 && $2 == 8 && $3 == "cnj" && $24 == "0" && /ball domain; conformant/ { found = 1 } END { exit !found }' "$work/ball.csv" &&
+grep -q ",cube,.*noise; drop\"" "$work/drop.csv" && ok || bad "drop mode named in the notes"
+"$bin" --dim 3 --grid 8 --methods cnj --domain ball --quiet --stats "$work/ball.csv" && ok || bad "ball run"
+awk -F, '$1 == 3 && $2 == 8 && $3 == "cnj" && $19 == "ball" && $25 == "0" && /noise; conformant"/ { found = 1 } END { exit !found }' "$work/ball.csv" &&
   ok || bad "ball: $(tail -1 "$work/ball.csv")"
-"$bin" --dim 4 --grid 6 --on sphere --quiet --stats "$work/sphere.csv" && ok || bad "sphere run"
-[[ $(grep -c "on the sphere; geodesic distances" "$work/sphere.csv") -eq 2 ]] && ok || bad "sphere: cnj and random rows: $(cat "$work/sphere.csv")"
+"$bin" --dim 4 --grid 6 --on sphere --quiet --no-timing --stats "$work/sphere.csv" && ok || bad "sphere run"
+[[ $(grep -c ",fair,sphere,2.0," "$work/sphere.csv") -eq 2 ]] && ok || bad "sphere: cnj and random rows: $(cat "$work/sphere.csv")"
+"$bin" --dim 4 --grid 6 --domain sphere --quiet --no-timing --stats "$work/sphere2.csv" && cmp -s "$work/sphere.csv" "$work/sphere2.csv" && ok ||
+  bad "--domain sphere is --on sphere"
 expect_error "sample domain" "" "" --dim 3 --grid 4 --domain klein
 expect_error "torus drop" "" "torus has no boundary" --dim 3 --grid 4 --domain torus --domain-mode drop
 expect_error "torus bound" "" "--bound applies to conformant CNJ" --dim 3 --grid 4 --domain torus --bound ramp
 # Without --domain, options that need a boundary put CNJ in the cube.
-"$bin" --dim 3 --grid 4 --methods cnj --domain-mode drop -q | grep -q "cube domain; drop" &&
-  "$bin" --dim 3 --grid 4 --methods cnj --bound ramp -q | grep -q "cube domain; conformant" && ok ||
+"$bin" --dim 3 --grid 4 --methods cnj --domain-mode drop -q | grep -q ",cube,.*noise; drop\"" &&
+  "$bin" --dim 3 --grid 4 --methods cnj --bound ramp -q | grep -q ",cube,.*noise; conformant\"" && ok ||
   bad "--domain-mode drop or --bound without --domain: the cube"
 expect_error "drop boundary width" "" "--boundary-spacings applies" --dim 3 --grid 4 --domain cube --domain-mode drop --boundary-spacings 1
 expect_error "torus simplex" "" "periodic noise basis" --dim 3 --grid 4 --noise simplex
@@ -141,7 +143,9 @@ expect_error "sphere methods" "" "" --dim 3 --grid 4 --on sphere --methods cnj,p
 # A huge lattice is refused at once, not counted site by site.
 expect_error "ball memory" "" "" --dim 8 --grid 100 --domain ball --max-memory 1
 expect_error "sphere memory" "" "" --dim 8 --grid 100 --on sphere --max-memory 1
-expect_error "ball rdf" "" "" --dim 3 --grid 4 --domain ball --rdf "$work/ballrdf.csv"
+# The ball's RDF, edge-corrected by the lens of two balls.
+"$bin" --dim 3 --grid 8 --domain ball --methods cnj,random --rdf "$work/ballrdf.csv" -q -o /dev/null && ok || bad "ball rdf"
+expect_finite "ball rdf" "$work/ballrdf.csv"
 
 # RDF output
 "$bin" --dim 3 --grid 6 --methods jitter,random --rdf "$work/rdf.csv" --rdf-bins 10 --quiet >/dev/null && ok || bad "rdf run"

@@ -32,7 +32,7 @@ run() {
 # statistics on standard output), the sphere, the bounded ball; the statistics with times.
 run all -d 2 --grid 8 --methods cnj,jitter-matched,jitter,pds,sobol,random,halton,lhs --scramble none \
   -o all.csv --rdf all_rdf.csv --rdf-bins 40 --points pts -q
-run count -d 3 -n 100 --methods pds,sobol,halton,lhs,random --protocol unit --no-timing -o count.csv -q
+run count -d 3 -n 100 --methods pds,sobol,halton,lhs,random --domain cube --no-timing -o count.csv -q
 run realizations -d 3 --grid 5 --methods cnj,jitter,pds,sobol --realizations 3 --no-timing -q
 run sphere --dim 3 --grid 6 --on sphere --no-timing -o sphere.csv -q
 run ball --dim 3 --grid 6 --domain ball --bound ramp --methods cnj,jitter --no-timing -o ball.csv -q

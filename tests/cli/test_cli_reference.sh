@@ -38,7 +38,7 @@ run version --version
 # The main job: the default methods, realizations, a point count, the sphere, the torus.
 run main --dim 3 --grid 8 --no-timing -q -o main_stats.csv --rdf main_rdf.csv --json main.json --points main_points
 run main_2d --dim 2 --grid 8 --realizations 3 --no-timing -q -o main_2d.csv --json main_2d.json
-run main_count -d 2 -n 200 --methods pds,sobol,halton,lhs,random --protocol unit --no-timing -q -o main_count.csv \
+run main_count -d 2 -n 200 --methods pds,sobol,halton,lhs,random --domain cube --no-timing -q -o main_count.csv \
   --points count_points --format npy
 run main_sphere sample --dim 3 --grid 6 --on sphere --no-timing -q
 run main_torus --dim 3 --grid 6 --domain torus --methods cnj,jitter --no-timing -q --periodic

@@ -37,9 +37,9 @@ expect_error "stdin without format" "0.1 0.2\n" "standard input \('-'\) has no e
 expect_error "stdin twice" "0.1 0.2\n" "standard input \('-'\) can be read once" stats --input - - --format dat
 
 # Several inputs, as --input and positional: rows of each, numbered within the input.
-"$bin" -n 256 -d 3 -m 3 --methods sobol,pds --protocol unit --points "$work/b" --format bin --no-stats 2>/dev/null && ok || bad "sample bin"
-"$bin" -n 256 -d 3 -m 3 --methods sobol --protocol unit --points "$work/n" --format npy --no-stats 2>/dev/null && ok || bad "sample npy"
-"$bin" -n 256 -d 3 -m 3 --methods sobol,pds --protocol unit --points "$work/d" --format dat --no-stats 2>/dev/null && ok || bad "sample dat"
+"$bin" -n 256 -d 3 -m 3 --methods sobol,pds --domain cube --points "$work/b" --format bin --no-stats 2>/dev/null && ok || bad "sample bin"
+"$bin" -n 256 -d 3 -m 3 --methods sobol --domain cube --points "$work/n" --format npy --no-stats 2>/dev/null && ok || bad "sample npy"
+"$bin" -n 256 -d 3 -m 3 --methods sobol,pds --domain cube --points "$work/d" --format dat --no-stats 2>/dev/null && ok || bad "sample dat"
 "$bin" stats --no-timing "$work/b/sobol.bin" --input "$work/n/sobol.npy" "$work/d/pds.dat" -o "$work/many.csv" 2>"$work/err" &&
   ok || bad "several inputs: $(cat "$work/err")"
 [[ $(set_rows "$work/many.csv" | wc -l) -eq 9 ]] && ok || bad "several inputs: $(set_rows "$work/many.csv" | wc -l) set rows"

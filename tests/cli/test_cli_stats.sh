@@ -5,11 +5,11 @@ set -u
 source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
 # The sampling stats' nearest-neighbour and displacement columns (issue 11), the displacement ones empty.
-header="input,set,dim,points,nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,median_displacement,frac_unmoved,neighbour_disorder,lattice_order,seconds_stats,domain_side,cd,wd,md,l2_star,stat"
+header="input,set,dim,points,nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,median_displacement,frac_unmoved,neighbour_disorder,lattice_order,seconds_stats,domain,domain_side,cd,wd,md,l2_star,stat"
 
 # The same Sobol set as CSV and NPY gives the same statistics.
-"$bin" --dim 3 --grid 5 --methods sobol,jitter --protocol unit --points "$work/p" --format npy --quiet >/dev/null || bad "sample npy"
-"$bin" --dim 3 --grid 5 --methods sobol,jitter --protocol unit --points "$work/p" --format csv --quiet >/dev/null || bad "sample csv"
+"$bin" --dim 3 --grid 5 --methods sobol,jitter --domain cube --points "$work/p" --format npy --quiet >/dev/null || bad "sample npy"
+"$bin" --dim 3 --grid 5 --methods sobol,jitter --domain cube --points "$work/p" --format csv --quiet >/dev/null || bad "sample csv"
 for f in sobol.npy sobol.csv; do
   "$bin" stats --input "$work/p/$f" --discrepancy >"$work/$f.stats" 2>"$work/err" && ok || bad "stats $f: $(cat "$work/err")"
   head -1 "$work/$f.stats" | grep -qx "$header" && ok || bad "stats $f header: $(head -1 "$work/$f.stats")"
@@ -67,10 +67,10 @@ expect_error "sets in csv" "" "--points writes the 2 sets of --sets into one fil
 expect_error "realizations and rdf" "" "--rdf takes one realization" --dim 3 --grid 4 -m 2 --rdf "$work/rp.csv"
 
 # stats --spectrum: 2D sets (the file's sets are averaged); not for 4D.
-"$bin" --dim 2 --grid 16 --methods jitter --protocol unit --points "$work/s2" --quiet >/dev/null || bad "sample 2D"
+"$bin" --dim 2 --grid 16 --methods jitter --domain cube --points "$work/s2" --quiet >/dev/null || bad "sample 2D"
 "$bin" stats --input "$work/s2/jitter.csv" --spectrum "$work/spec" --spectrum-frequency 20 >/dev/null 2>"$work/err" && ok || bad "spectrum: $(cat "$work/err")"
 [[ $(wc -l <"$work/spec.csv") -eq $((41 * 41 + 1)) && $(wc -l <"$work/spec_radial.csv") -eq 21 ]] && ok || bad "spectrum files"
-"$bin" --dim 4 --grid 3 --methods jitter --protocol unit --points "$work/s4" --quiet >/dev/null || bad "sample 4D"
+"$bin" --dim 4 --grid 3 --methods jitter --domain cube --points "$work/s4" --quiet >/dev/null || bad "sample 4D"
 expect_error "spectrum 4D" "" "needs 2D or 3D points" stats --input "$work/s4/jitter.csv" --spectrum "$work/spec4"
 
 # reproduce integration, small: every file and a reading.

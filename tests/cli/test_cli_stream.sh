@@ -54,7 +54,7 @@ same_as_in_memory "7D torus" npy 0 --dim 7 --grid 3 --methods $all
 # shape are written last).
 same_as_in_memory "2D cube" npy 6 --dim 2 --grid 30 --methods $all --domain cube
 same_as_in_memory "3D cube" csv 3 --dim 3 --grid 9 --methods $all --domain cube --seed 7
-same_as_in_memory "4D cube" npy 7 --dim 4 --grid 7 --methods $all --domain cube --protocol unit
+same_as_in_memory "4D cube" npy 7 --dim 4 --grid 7 --methods $all --domain cube
 same_as_in_memory "5D cube" npy 2 --dim 5 --grid 4 --methods $all --domain cube
 same_as_in_memory "7D cube" npy 3 --dim 7 --grid 3 --methods cnj,jitter --domain cube
 same_as_in_memory "2D drop" npy 5 --dim 2 --grid 30 --methods cnj --domain-mode drop --step-scale 2
@@ -64,7 +64,7 @@ same_as_in_memory "5D drop" npy 5 --dim 5 --grid 5 --methods cnj --domain-mode d
 # Drop mode must really drop points for the test above to mean anything.
 "$bin" sample --dim 2 --grid 30 --methods cnj --domain-mode drop --step-scale 2 --no-timing --stream --slabs 5 \
   -o "$work/drop.csv" 2>/dev/null
-dropped=$(awk -F, 'NR == 2 { print $24 }' "$work/drop.csv")
+dropped=$(awk -F, 'NR == 2 { print $25 }' "$work/drop.csv")
 [[ $dropped =~ ^[0-9]+$ && $dropped -gt 0 ]] && ok || bad "2D drop: dropped column '$dropped'"
 # Other CNJ options and the paper protocol's Sobol box.
 same_as_in_memory "3D curl field" npy 4 --dim 3 --grid 8 --methods cnj --field curl
@@ -118,23 +118,22 @@ same_as_in_memory "5D periodic" npy 5 --dim 5 --grid 5 --methods $all --periodic
 for slabs in 1 2 24; do
   same_with_rdf "2D periodic rdf" $slabs --dim 2 --grid 24 --methods $all --seed 5 --periodic
 done
-same_with_rdf "2D rdf" 24 --dim 2 --grid 24 --methods $all --seed 5
+same_with_rdf "2D cube rdf" 24 --dim 2 --grid 24 --methods $all --seed 5 --domain cube
 same_with_rdf "3D periodic rdf, all queries" 5 --dim 3 --grid 10 --methods $all --periodic --rdf-queries 0
-same_with_rdf "3D rdf, 50 queries" 10 --dim 3 --grid 10 --methods $all --rdf-queries 50
-same_with_rdf "4D cube periodic rdf" 3 --dim 4 --grid 6 --methods $all --domain cube --periodic
+same_with_rdf "3D cube rdf, 50 queries" 10 --dim 3 --grid 10 --methods $all --rdf-queries 50 --domain cube
 same_with_rdf "4D cube rdf" 6 --dim 4 --grid 6 --methods $all --domain cube --rdf-queries 200
 same_with_rdf "5D periodic rdf, 100 queries" 5 --dim 5 --grid 5 --methods $all --periodic --rdf-queries 100
 same_with_rdf "6D periodic rdf" 2 --dim 6 --grid 4 --methods cnj,jitter,sobol --periodic --rdf-bins 20
 same_with_rdf "6D count periodic rdf" 4 --dim 6 --methods random,sobol -n 3000 --periodic --rdf-queries 300
 same_with_rdf "7D periodic rdf" 3 --dim 7 --grid 3 --methods $all --periodic
 same_with_rdf "7D cube rdf" 3 --dim 7 --grid 3 --methods cnj,jitter --domain cube
-same_with_rdf "3D drop periodic rdf" 4 --dim 3 --grid 8 --methods cnj --domain-mode drop --step-scale 2 --periodic
+same_with_rdf "3D drop rdf" 4 --dim 3 --grid 8 --methods cnj --domain-mode drop --step-scale 2
 # --rdf-max wider than a slab: the halo reaches over several slabs each way (7 of 24 here; on the torus
 # 11 each way, and with 2 slabs each one's halo is the whole set), and beyond every slab in 3D.
-same_with_rdf "2D rdf-max over 7 slabs" 24 --dim 2 --grid 24 --methods cnj,random --rdf-max 0.3
+same_with_rdf "2D cube rdf-max over 7 slabs" 24 --dim 2 --grid 24 --methods cnj,random --rdf-max 0.3 --domain cube
 same_with_rdf "2D periodic rdf-max over 11 slabs" 24 --dim 2 --grid 24 --methods cnj,random --periodic --rdf-max 0.45
 same_with_rdf "2D periodic rdf-max, 2 slabs" 2 --dim 2 --grid 24 --methods cnj,random --periodic --rdf-max 0.45
-same_with_rdf "3D rdf-max beyond every slab" 6 --dim 3 --grid 6 --methods jitter --rdf-max 0.9 --rdf-bins 30
+same_with_rdf "3D rdf-max beyond every slab" 6 --dim 3 --grid 6 --methods jitter --rdf-max 0.9 --rdf-bins 30 --domain cube
 # A first halo too thin for some nearest neighbour (40 random points in 40 slabs: the halo starts at the
 # mean spacing): the slab is measured again, exactly (test_streamed_statistics checks that it is).
 same_with_rdf "2D thin halo" 40 --dim 2 --methods random -n 40 --seed 3
@@ -161,7 +160,7 @@ expect_error "slabs not dividing K" "" "--slabs 4 does not divide --grid 10" \
   sample --dim 3 --grid 10 --methods cnj --stream --slabs 4 -o "$work/bad.csv"
 expect_error "pds" "" "not pds" sample --dim 3 --grid 6 --methods cnj,pds --stream -o "$work/bad.csv"
 expect_error "jitter-matched" "" "not jitter-matched" sample --dim 3 --grid 6 --stream -o "$work/bad.csv"
-expect_error "ball" "" "--domain torus or cube" sample --dim 3 --grid 6 --methods cnj --domain ball --stream -o "$work/bad.csv"
+expect_error "ball" "" "of a torus or cube into slabs, not --domain ball" sample --dim 3 --grid 6 --methods cnj --domain ball --stream -o "$work/bad.csv"
 expect_error "periodic rdf-max" "" "--rdf-max 0.5 with --periodic must be below half" \
   sample --dim 3 --grid 6 --methods cnj --periodic --rdf "$work/rdf.csv" --rdf-max 0.5 --stream -o "$work/bad.csv"
 expect_error "sets" "" "drop --sets 2" sample --dim 3 --grid 6 --methods cnj --sets 2 --stream -o "$work/bad.csv"

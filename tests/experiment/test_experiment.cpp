@@ -39,13 +39,64 @@ TEST(Experiment, PaperProtocolPlans) {
   SampleConfig c;
   c.dimension = 7;
   c.grid = 6;
+  c.use_protocol(Protocol::paper);
+  EXPECT_EQ(c.domain(), DomainKind::cube);
+  EXPECT_EQ(c.cnj.domain_mode, DomainMode::drop);
+  EXPECT_EQ(c.cnj.trace.steps, 1);  // Section 5.1's one RK4 step
   EXPECT_EQ(plan_method(c, Method::sobol).requested, 262144u);  // 2^round(log2 6^7)
-  EXPECT_DOUBLE_EQ(plan_method(c, Method::sobol).domain.side, 0.6);
+  EXPECT_EQ(plan_method(c, Method::sobol).domain.kind, DomainKind::cube);
+  EXPECT_NEAR(plan_method(c, Method::sobol).domain.side, 0.6, 1e-15);
   EXPECT_DOUBLE_EQ(plan_method(c, Method::pds).pds_radius, 0.1);
   EXPECT_EQ(plan_method(c, Method::pds).requested, 279936u);
-  c.protocol = Protocol::unit;
-  EXPECT_EQ(plan_method(c, Method::sobol).requested, 279936u);
-  EXPECT_DOUBLE_EQ(plan_method(c, Method::pds).pds_radius, 1.0 / 6.0);
+  // The lattice sets are measured in the box their cells fill: spacing 0.18, [0.05 - 0.09, 0.95 + 0.09].
+  for (Method m : {Method::cnj, Method::jitter, Method::jitter_matched}) {
+    const Domain d = plan_method(c, m).domain;
+    EXPECT_EQ(d.kind, DomainKind::cube);
+    EXPECT_NEAR(d.lo, -0.04, 1e-15);
+    EXPECT_NEAR(d.side, 1.08, 1e-15);
+  }
+}
+
+// The fair protocol: every method in the run's one unit domain at the lattice's count (Sobol and Halton
+// too), Poisson disk's radius searched; in the ball, the count of the lattice's sites inside it.
+TEST(Experiment, FairProtocolPlansOneDomainAndOneCount) {
+  SampleConfig c;
+  c.dimension = 7;
+  c.grid = 6;
+  for (DomainKind kind : {DomainKind::torus, DomainKind::cube, DomainKind::ball}) {
+    c.cnj.domain = kind;
+    const std::uint64_t count = plan_method(c, Method::cnj).requested;
+    EXPECT_EQ(count, kind == DomainKind::ball ? cnj_start_count(c.lattice(), DomainKind::ball) : 279936u);
+    for (Method m : kAllMethods) {
+      const MethodPlan plan = plan_method(c, m);
+      EXPECT_EQ(plan.domain, Domain::unit(kind)) << to_string(m);
+      EXPECT_EQ(plan.requested, count) << to_string(m);
+      EXPECT_EQ(plan.pds_radius, 0.0);
+    }
+  }
+}
+
+// Every set of a fair run lives in the run's domain with the run's count, and its statistics are the
+// domain's: on the torus, the nearest-neighbour distances by brute force over minimum images.
+TEST(Experiment, FairRunMeasuresEverySetInTheDomainsMetric) {
+  SampleConfig c;
+  c.dimension = 3;
+  c.grid = 8;
+  c.methods = {Method::cnj, Method::jitter_matched, Method::jitter, Method::pds, Method::sobol, Method::halton};
+  for (DomainKind kind : {DomainKind::torus, DomainKind::cube}) {
+    c.cnj.domain = kind;
+    for (const MethodResult& r : run_sampling(c, true)) {
+      SCOPED_TRACE(::testing::Message() << to_string(kind) << " " << to_string(r.plan.method));
+      EXPECT_EQ(r.points.domain, Domain::unit(kind));
+      EXPECT_EQ(r.point_count, 512u);
+      double min2 = INFINITY;
+      for (std::size_t i = 0; i < r.points.size(); ++i)
+        for (std::size_t k = 0; k < r.points.size(); ++k)
+          if (k != i) min2 = std::min(min2, r.points.domain.distance2(r.points.point(i), r.points.point(k), 3));
+      EXPECT_DOUBLE_EQ(r.nearest.min, std::sqrt(min2));
+      EXPECT_DOUBLE_EQ(r.nearest.median_scaled, r.nearest.median * 8.0);  // (512 / 1)^(1/3)
+    }
+  }
 }
 
 TEST(Experiment, RejectsWhatDoesNotFitInMemory) {
@@ -82,6 +133,7 @@ TEST(Experiment, PaperProtocolMatchesTable1) {
       c.grid = 10;
       c.seed = 1000 + static_cast<std::uint64_t>(s);
       c.methods = {row.method};
+      c.use_protocol(Protocol::paper);
       mean_median += run_sampling(c, false)[0].nearest.median / seeds;
     }
     std::printf("%dD %s: median %.4f, paper %.3f (%+.1f%%)\n", row.dimension, to_string(row.method).data(), mean_median,
@@ -136,7 +188,7 @@ TEST(Experiment, CountGivesExactlyThatManyPoints) {
   c.dimension = 3;
   c.count = 1000;
   c.grid = grid_for_count(c.dimension, c.count);
-  c.protocol = Protocol::unit;
+  c.protocol = Protocol::fair;
   c.methods = {Method::jitter, Method::sobol, Method::random, Method::halton, Method::lhs, Method::pds};
   for (const MethodResult& r : run_sampling(c, false)) {
     if (r.plan.method == Method::jitter) {
@@ -205,7 +257,8 @@ TEST(Experiment, StatsColumnsAreNumbersOrEmpty) {
   // the periodic basis realises: near 0.5 / spacing = 3 cycles per unit length.
   EXPECT_NEAR(std::stod(cnj[column("field_frequency")]), 0.5 * 6.0, 0.3);
   EXPECT_FALSE(cnj[column("dropped")].empty());
-  EXPECT_EQ(cnj[column("notes")], "\"turning-bands noise; torus domain; conformant\"");
+  EXPECT_EQ(cnj[column("notes")], "\"turning-bands noise; conformant\"");
+  EXPECT_EQ(cnj[column("domain")], "torus");
   EXPECT_FALSE(cnj[column("retraced")].empty());
   EXPECT_FALSE(cnj[column("kept_at_site")].empty());
   EXPECT_EQ(cnj[column("seconds_generate")], "");
@@ -214,7 +267,8 @@ TEST(Experiment, StatsColumnsAreNumbersOrEmpty) {
   EXPECT_TRUE(pds[column("saturated")] == "0" || pds[column("saturated")] == "1");
   for (const char* name : {"cycles_per_spacing", "trace_time", "dropped", "radius", "saturated", "rms_displacement"})
     EXPECT_EQ(sobol[column(name)], "") << name;
-  EXPECT_EQ(sobol[column("domain_side")], "0.6");
+  EXPECT_EQ(sobol[column("domain_side")], "1.0");  // the fair protocol: every method in the run's domain
+  EXPECT_EQ(sobol[column("domain")], "torus");
   EXPECT_EQ(sobol[column("stat")], "value");  // a realization's row (summary rows: mean, sd)
   EXPECT_NE(split_row(stats_csv_row(c, results[2], true))[column("seconds_generate")], "");
 }

@@ -11,8 +11,14 @@ METHODS = ["cnj", "jitter", "jitter-matched", "pds", "sobol", "random", "halton"
 
 @pytest.mark.parametrize("protocol", ["unit", "paper"])
 def test_sample_equals_the_cli_points_bit_for_bit(cli, tmp_path, protocol):
-    cli("--dim", 3, "--grid", 5, "--seed", 3, "--protocol", protocol, "--methods", ",".join(METHODS),
-        "--points", tmp_path, "--format", "npy", "--stats", tmp_path / "stats.csv", "--quiet")
+    # The engines' "unit" protocol is the CLI's fair one on the torus (the default), but for Poisson disk,
+    # which the engines run in the unit cube at radius 1/K (here 0.2).
+    cli("--dim", 3, "--grid", 5, "--seed", 3, "--protocol", "fair" if protocol == "unit" else protocol,
+        "--methods", ",".join(METHODS), "--points", tmp_path, "--format", "npy", "--stats", tmp_path / "stats.csv",
+        "--quiet")
+    if protocol == "unit":
+        cli("--dim", 3, "--grid", 5, "--seed", 3, "--domain", "cube", "--methods", "pds", "--pds-radius", 0.2,
+            "--points", tmp_path, "--format", "npy", "--stats", tmp_path / "stats.csv", "--quiet")
     for method in METHODS:
         expected = np.load(tmp_path / f"{method}.npy")
         got = dfvn.sample(method, 3, grid=5, seed=3, protocol=protocol)
@@ -21,10 +27,13 @@ def test_sample_equals_the_cli_points_bit_for_bit(cli, tmp_path, protocol):
 
 
 def test_sample_options_reach_the_generator_as_on_the_command_line(cli, tmp_path):
-    cli("--dim", 4, "--grid", 4, "--seed", 8, "--protocol", "unit", "--methods", "cnj,sobol,halton,pds",
-        "--scramble", "none", "--noise", "quintic-gradient", "--cycles-per-spacing", 0.35, "--step-scale", 0.3,
-        "--integrator", "euler", "--reproject", "newton", "--steps", 3, "--pds-radius", 0.2, "--pds-candidates", 10,
-        "--domain", "ball", "--bound", "ramp",
+    # CNJ in the ball; the sequences and Poisson disk (which the engines run in the cube) in the cube.
+    cli("--dim", 4, "--grid", 4, "--seed", 8, "--methods", "cnj", "--noise", "quintic-gradient",
+        "--cycles-per-spacing", 0.35, "--step-scale", 0.3, "--integrator", "euler", "--reproject", "newton",
+        "--steps", 3, "--domain", "ball", "--bound", "ramp",
+        "--points", tmp_path, "--format", "npy", "--stats", tmp_path / "stats.csv", "--quiet")
+    cli("--dim", 4, "--grid", 4, "--seed", 8, "--methods", "sobol,halton,pds", "--domain", "cube", "--scramble", "none",
+        "--pds-radius", 0.2, "--pds-candidates", 10,
         "--points", tmp_path, "--format", "npy", "--stats", tmp_path / "stats.csv", "--quiet")
     common = dict(grid=4, seed=8, scramble=False)
     cnj = dfvn.sample("cnj", 4, noise="quintic-gradient", cycles_per_spacing=0.35, step_scale=0.3, integrator="euler",

@@ -61,7 +61,7 @@ def test_periodic_rdf_of_uniform_random_points_is_about_one():
 
 
 def test_rdf_equals_the_cli_rdf(cli, tmp_path):
-    cli("--dim", 3, "--grid", 8, "--seed", 6, "--protocol", "unit", "--methods", "jitter,sobol",
+    cli("--dim", 3, "--grid", 8, "--seed", 6, "--domain", "cube", "--methods", "jitter,sobol",
         "--rdf", tmp_path / "rdf.csv", "--stats", tmp_path / "stats.csv", "--quiet")
     rows = list(csv.DictReader(open(tmp_path / "rdf.csv")))
     for method in ("jitter", "sobol"):

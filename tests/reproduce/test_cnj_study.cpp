@@ -17,7 +17,7 @@ namespace {
 // The study traces the free field, whose default step count is the drop mode's.
 int free_field_steps() {
   CnjOptions options;
-  options.domain = CnjDomain::cube;
+  options.domain = DomainKind::cube;
   options.domain_mode = DomainMode::drop;
   return cnj_steps(options);
 }

@@ -20,11 +20,11 @@ int small_grid(int dimension) {
 
 TEST(ConformantJitter, KeepsEveryPointInsideTheCubeAndTheBall) {
   for (int dimension = 2; dimension <= 8; ++dimension)
-    for (CnjDomain domain : {CnjDomain::cube, CnjDomain::ball})
+    for (DomainKind domain : {DomainKind::cube, DomainKind::ball})
       for (Bound bound : kAllBounds)
-      for (Protocol protocol : {Protocol::paper, Protocol::unit})
+      for (Protocol protocol : {Protocol::paper, Protocol::fair})
         for (std::uint64_t seed : {1, 2}) {
-          const LatticeSpec lattice{dimension, small_grid(dimension) + (domain == CnjDomain::ball ? 2 : 0), protocol};
+          const LatticeSpec lattice{dimension, small_grid(dimension) + (domain == DomainKind::ball ? 2 : 0), protocol};
           CnjOptions options;
           options.domain = domain;
           options.bound = bound;
@@ -48,14 +48,14 @@ TEST(ConformantJitter, KeepsEveryPointInsideTheCubeAndTheBall) {
 }
 
 TEST(ConformantJitter, BallLatticeIsTheLatticeClippedToTheInscribedBall) {
-  const LatticeSpec lattice{2, 10, Protocol::unit};
+  const LatticeSpec lattice{2, 10, Protocol::fair};
   // Cell centres (i + 1/2)/10 strictly inside the circle of radius 1/2 about (1/2, 1/2), in cell units:
   std::uint64_t expected = 0;
   for (int i = 0; i < 10; ++i)
     for (int j = 0; j < 10; ++j) expected += (i - 4.5) * (i - 4.5) + (j - 4.5) * (j - 4.5) < 25.0;
-  EXPECT_EQ(cnj_start_count(lattice, CnjDomain::ball), expected);
+  EXPECT_EQ(cnj_start_count(lattice, DomainKind::ball), expected);
   EXPECT_EQ(expected, 80u);  // 100 minus the 5 cells in each corner whose centres lie outside
-  EXPECT_EQ(cnj_start_sites(lattice, CnjDomain::ball).size(), 2 * expected);
+  EXPECT_EQ(cnj_start_sites(lattice, DomainKind::ball).size(), 2 * expected);
 }
 
 // A step much longer than the boundary layer jumps across it; conformant CNJ then traces again with
@@ -63,7 +63,7 @@ TEST(ConformantJitter, BallLatticeIsTheLatticeClippedToTheInscribedBall) {
 TEST(ConformantJitter, RetracesStepsThatJumpOutOfTheDomain) {
   const LatticeSpec lattice{3, 10, Protocol::paper};
   CnjOptions options;
-  options.domain = CnjDomain::cube;
+  options.domain = DomainKind::cube;
   options.step_scale = 8.0;
   const CnjResult r = curl_noise_jitter(lattice, options, 5, 2);
   std::printf("step scale 8: %llu retraced, %llu kept at site\n", static_cast<unsigned long long>(r.retraced),
@@ -77,7 +77,7 @@ TEST(ConformantJitter, RetracesStepsThatJumpOutOfTheDomain) {
 }
 
 TEST(ConformantJitter, SameBytesOnOneAndTwoThreads) {
-  for (CnjDomain domain : {CnjDomain::cube, CnjDomain::ball}) {
+  for (DomainKind domain : {DomainKind::cube, DomainKind::ball}) {
     const LatticeSpec l{5, 6, Protocol::paper};
     CnjOptions options;
     options.domain = domain;
@@ -100,7 +100,7 @@ struct LayerFraction {
 };
 
 LayerFraction boundary_layer_fraction(int dimension, int grid, std::uint64_t seed) {
-  const LatticeSpec lattice{dimension, grid, Protocol::unit};
+  const LatticeSpec lattice{dimension, grid, Protocol::fair};
   const double w = 1.0 / grid;
   auto fraction_in_layer = [&](const PointSet& points) {
     std::size_t in_layer = 0;
@@ -112,7 +112,7 @@ LayerFraction boundary_layer_fraction(int dimension, int grid, std::uint64_t see
     return static_cast<double>(in_layer) / static_cast<double>(points.size());
   };
   CnjOptions options;
-  options.domain = CnjDomain::cube;
+  options.domain = DomainKind::cube;
   const CnjResult conformant = curl_noise_jitter(lattice, options, seed, 2);
   options.domain_mode = DomainMode::drop;
   const CnjResult dropped = curl_noise_jitter(lattice, options, seed, 2);

@@ -15,7 +15,7 @@ namespace dfvn {
 namespace {
 
 TEST(Lattice, PaperAndUnitCoordinates) {
-  const LatticeSpec paper{7, 6, Protocol::paper}, unit{7, 6, Protocol::unit};
+  const LatticeSpec paper{7, 6, Protocol::paper}, unit{7, 6, Protocol::fair};
   EXPECT_DOUBLE_EQ(paper.coordinate(0), 0.05);
   EXPECT_DOUBLE_EQ(paper.coordinate(5), 0.95);
   EXPECT_DOUBLE_EQ(paper.spacing(), 0.18);  // data/PROTOCOL.md: 0.9/5 in 7D
@@ -24,7 +24,7 @@ TEST(Lattice, PaperAndUnitCoordinates) {
   EXPECT_EQ(paper.point_count(), 279936u);
   EXPECT_DOUBLE_EQ(jitter_half_width(paper), 0.05);
   EXPECT_DOUBLE_EQ(jitter_half_width(unit), 1.0 / 12.0);
-  EXPECT_THROW(LatticeSpec({8, 1 << 20, Protocol::unit}).point_count(), std::invalid_argument);
+  EXPECT_THROW(LatticeSpec({8, 1 << 20, Protocol::fair}).point_count(), std::invalid_argument);
 }
 
 TEST(Lattice, AverageNeighbourDistance) {
@@ -35,7 +35,7 @@ TEST(Lattice, AverageNeighbourDistance) {
 
 // 23^4 points: enough coordinates for the threaded loops (core/parallel.hpp).
 TEST(Jitter, StaysInItsCellAndIgnoresThreads) {
-  const LatticeSpec l{4, 23, Protocol::unit};
+  const LatticeSpec l{4, 23, Protocol::fair};
   const PointSet a = jittered_lattice(l, 3, 1), b = jittered_lattice(l, 3, 2);
   ASSERT_TRUE(worth_threads(a.coordinates.size()));
   EXPECT_EQ(a.coordinates, b.coordinates);
@@ -62,7 +62,7 @@ TEST(RandomPoints, UniformInTheDomain) {
 }
 
 TEST(MatchedJitter, SameBytesOnOneAndTwoThreadsOnALargeLattice) {
-  const LatticeSpec l{4, 23, Protocol::unit};
+  const LatticeSpec l{4, 23, Protocol::fair};
   const MatchedJitter a = jitter_matching_rms(l, 0.3 / 23, JitterBoundary::reflect, 5, 1);
   const MatchedJitter b = jitter_matching_rms(l, 0.3 / 23, JitterBoundary::reflect, 5, 2);
   ASSERT_TRUE(worth_threads(a.points.coordinates.size()));
@@ -84,7 +84,7 @@ TEST(CurlNoiseJitter, SameBytesOnOneAndTwoThreads) {
 
 TEST(CurlNoiseJitter, MovesPointsByAboutTheTraceTime) {
   // RMS |c| = 1, so a single RK4 step of time t moves points by about t in the RMS sense.
-  const LatticeSpec l{3, 20, Protocol::unit};
+  const LatticeSpec l{3, 20, Protocol::fair};
   CnjOptions o;
   const CnjResult r = curl_noise_jitter(l, o, 5, 2);
   EXPECT_GT(r.rms_displacement, 0.3 * r.trace_time);
@@ -95,10 +95,10 @@ TEST(CurlNoiseJitter, MovesPointsByAboutTheTraceTime) {
 // free one (drop mode, and the torus, the default). An explicit count is kept; a negative one is refused.
 TEST(CurlNoiseJitter, StepsDefaultToTheDomainModesCount) {
   CnjOptions o;
-  EXPECT_EQ(o.domain, CnjDomain::torus);
+  EXPECT_EQ(o.domain, DomainKind::torus);
   EXPECT_EQ(o.trace.steps, CnjOptions::kStepsByDomainMode);
   EXPECT_EQ(cnj_steps(o), kFreeFieldSteps);
-  o.domain = CnjDomain::cube;
+  o.domain = DomainKind::cube;
   EXPECT_EQ(cnj_steps(o), 1);
   o.domain_mode = DomainMode::drop;
   EXPECT_EQ(cnj_steps(o), kFreeFieldSteps);
@@ -121,7 +121,7 @@ TEST(CurlNoiseJitter, StepsDefaultToTheDomainModesCount) {
 TEST(CurlNoiseJitter, ConformantDefaultIsOneStep) {
   const LatticeSpec l{4, 5, Protocol::paper};
   CnjOptions bounded;
-  bounded.domain = CnjDomain::cube;
+  bounded.domain = DomainKind::cube;
   CnjOptions one = bounded;
   one.trace.steps = 1;
   EXPECT_EQ(curl_noise_jitter(l, bounded, 3, 2).points.coordinates, curl_noise_jitter(l, one, 3, 2).points.coordinates);
@@ -131,7 +131,7 @@ TEST(CurlNoiseJitter, ConformantDefaultIsOneStep) {
 TEST(CurlNoiseJitter, DropModeDefaultIsItsStepCount) {
   const LatticeSpec l{5, 4, Protocol::paper};
   CnjOptions automatic;
-  automatic.domain = CnjDomain::cube;
+  automatic.domain = DomainKind::cube;
   automatic.domain_mode = DomainMode::drop;
   CnjOptions chosen = automatic, one = automatic;
   chosen.trace.steps = kFreeFieldSteps;
@@ -148,7 +148,7 @@ TEST(CurlNoiseJitter, DropModeStepsFollowTheFlow) {
   const LatticeSpec l{7, 3, Protocol::paper};  // 2187 sites
   auto displacements = [&](int steps) {
     CnjOptions o;
-    o.domain = CnjDomain::cube;
+    o.domain = DomainKind::cube;
     o.domain_mode = DomainMode::drop;
     o.trace.steps = steps;
     return curl_noise_jitter(l, o, 1, 2).displacements;

@@ -43,7 +43,7 @@ TEST(SamplingRanges, RandomAndJitterRows) {
 
 TEST(SamplingRanges, CnjRowsOnTheTorusAndInTheCube) {
   const LatticeSpec lattice{3, 6, Protocol::paper};
-  for (CnjDomain domain : {CnjDomain::torus, CnjDomain::cube}) {
+  for (DomainKind domain : {DomainKind::torus, DomainKind::cube}) {
     CnjOptions options;
     options.domain = domain;
     const CnjResult whole = curl_noise_jitter(lattice, options, 3, 2);
@@ -54,7 +54,7 @@ TEST(SamplingRanges, CnjRowsOnTheTorusAndInTheCube) {
     EXPECT_EQ(part.trace_time, whole.trace_time);
   }
   CnjOptions ball;
-  ball.domain = CnjDomain::ball;
+  ball.domain = DomainKind::ball;
   EXPECT_THROW(curl_noise_jitter_range(lattice, ball, 3, 0, 10, 1), std::invalid_argument);
 }
 

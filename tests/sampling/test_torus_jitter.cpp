@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "dfvn/core/torus.hpp"
 #include "dfvn/core/hash.hpp"
 #include "dfvn/field/constraint.hpp"
 #include "dfvn/integrate/trace_table.hpp"
@@ -21,7 +22,7 @@ int small_grid(int dimension) {
 
 TEST(TorusJitter, KeepsEveryLatticePointInTheHalfOpenUnitCube) {
   for (int dimension = 2; dimension <= 8; ++dimension)
-    for (Protocol protocol : {Protocol::paper, Protocol::unit}) {
+    for (Protocol protocol : {Protocol::paper, Protocol::fair}) {
       const LatticeSpec lattice{dimension, small_grid(dimension), protocol};
       const CnjResult r = curl_noise_jitter(lattice, CnjOptions{}, 3, 2);
       SCOPED_TRACE(::testing::Message() << dimension << "D " << to_string(protocol));
@@ -39,7 +40,7 @@ TEST(TorusJitter, KeepsEveryLatticePointInTheHalfOpenUnitCube) {
 }
 
 TEST(TorusJitter, SameBytesOnOneAndTwoThreads) {
-  const LatticeSpec l{6, 5, Protocol::unit};
+  const LatticeSpec l{6, 5, Protocol::fair};
   const CnjResult a = curl_noise_jitter(l, CnjOptions{}, 9, 1), b = curl_noise_jitter(l, CnjOptions{}, 9, 2);
   EXPECT_EQ(a.points.coordinates, b.points.coordinates);
   EXPECT_EQ(a.displacements, b.displacements);
@@ -55,8 +56,8 @@ TEST(TorusJitter, RefusesDropModeAndBasesWithoutAPeriodicForm) {
   o = CnjOptions{};
   o.noise = NoiseBasis::simplex;
   EXPECT_THROW(o.validate(), std::invalid_argument);
-  EXPECT_EQ(parse_cnj_domain("torus"), CnjDomain::torus);
-  EXPECT_THROW(parse_cnj_domain("sphere"), std::invalid_argument);
+  EXPECT_EQ(parse_domain_kind("torus"), DomainKind::torus);
+  EXPECT_THROW(parse_domain_kind("klein"), std::invalid_argument);
 }
 
 // Per coordinate, the share within [lo, hi) spacings of a face over the share within the same distance
@@ -79,8 +80,8 @@ double face_over_interior(const PointSet& points, int grid, double lo, double hi
 // interior's in 3D at K = 30). 3D, K = 20, three seeds pooled: 24,000 coordinates per seed, of which
 // about 900 in the face band, so the ratio's standard error is about 3%.
 TEST(TorusJitter, FaceBandsHoldWhatInteriorPlanesHold) {
-  const LatticeSpec lattice{3, 20, Protocol::unit};
-  for (CnjDomain domain : {CnjDomain::torus, CnjDomain::cube}) {
+  const LatticeSpec lattice{3, 20, Protocol::fair};
+  for (DomainKind domain : {DomainKind::torus, DomainKind::cube}) {
     PointSet pooled{3, {}, Box{}};
     for (std::uint64_t seed : {1, 2, 3}) {
       CnjOptions o;
@@ -91,7 +92,7 @@ TEST(TorusJitter, FaceBandsHoldWhatInteriorPlanesHold) {
     const double near = face_over_interior(pooled, 20, 0.0, 0.25), far = face_over_interior(pooled, 20, 0.25, 0.5);
     std::printf("%s: face / interior share [0, h/4) %.3f, [h/4, h/2) %.3f\n", std::string(to_string(domain)).c_str(), near,
                 far);
-    if (domain == CnjDomain::torus) {
+    if (domain == DomainKind::torus) {
       EXPECT_NEAR(near, 1.0, 0.12);
       EXPECT_NEAR(far, 1.0, 0.12);
     } else {  // Eq. 13: the artefact this test exists to catch
@@ -104,12 +105,12 @@ TEST(TorusJitter, FaceBandsHoldWhatInteriorPlanesHold) {
 // 1e-9 relative, wrapped on the torus and reflected in the cube, and every point stays in [0,1]^N.
 TEST(JitterMatched, EqualsTheRmsDisplacementItIsGiven) {
   for (int dimension = 2; dimension <= 8; ++dimension)
-    for (CnjDomain domain : {CnjDomain::torus, CnjDomain::cube}) {
-      const LatticeSpec lattice{dimension, small_grid(dimension), Protocol::unit};
+    for (DomainKind domain : {DomainKind::torus, DomainKind::cube}) {
+      const LatticeSpec lattice{dimension, small_grid(dimension), Protocol::fair};
       CnjOptions o;
       o.domain = domain;
       const CnjResult cnj = curl_noise_jitter(lattice, o, 4, 2);
-      const JitterBoundary boundary = domain == CnjDomain::torus ? JitterBoundary::wrap : JitterBoundary::reflect;
+      const JitterBoundary boundary = domain == DomainKind::torus ? JitterBoundary::wrap : JitterBoundary::reflect;
       const MatchedJitter j = jitter_matching_rms(lattice, cnj.rms_displacement, boundary, 4, 2);
       double sum = 0.0;
       for (double u : j.displacements) sum += u * u;
@@ -123,7 +124,7 @@ TEST(JitterMatched, EqualsTheRmsDisplacementItIsGiven) {
         if (boundary == JitterBoundary::wrap) ASSERT_LT(x, 1.0);
       }
       // The same draws as plain jitter: at the protocol's half-width a matched jitter is that jitter.
-      if (domain == CnjDomain::torus) {
+      if (domain == DomainKind::torus) {
         const PointSet plain = jittered_lattice(lattice, j.half_width, 4, 2);
         PointSet wrapped = plain;
         wrap_to_unit_torus(wrapped.coordinates.data(), wrapped.coordinates.size());
@@ -133,7 +134,7 @@ TEST(JitterMatched, EqualsTheRmsDisplacementItIsGiven) {
 }
 
 TEST(JitterMatched, RefusesWhatItCannotMatch) {
-  const LatticeSpec lattice{2, 10, Protocol::unit};
+  const LatticeSpec lattice{2, 10, Protocol::fair};
   for (double bad : {0.0, -1.0, std::nan(""), HUGE_VAL})
     EXPECT_THROW(jitter_matching_rms(lattice, bad, JitterBoundary::wrap, 1, 1), std::invalid_argument) << bad;
   // Reflected into the unit square, no point can move an RMS of 5.

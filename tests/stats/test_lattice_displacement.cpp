@@ -27,7 +27,7 @@ TEST(LatticeDisplacement, RigidTranslationKeepsTheLatticeAndHasNoDisorder) {
 // Uniform jitter of half-width h spacings: neighbour disorder sqrt(2N/3) h and lattice order
 // (sin(2 pi h) / (2 pi h))^2, up to sampling error (and the 1/n bias of the order).
 TEST(LatticeDisplacement, UniformJitterMatchesItsClosedForms) {
-  const LatticeSpec lattice{4, 12, Protocol::unit};
+  const LatticeSpec lattice{4, 12, Protocol::fair};
   const PointSet points = jittered_lattice(lattice, 5, 0);  // unit protocol: h = 1/2 spacing
   const double a = lattice.spacing();
   const auto s = summarize_lattice_displacements(4, 12, a, lattice_displacements(lattice, points));

@@ -38,7 +38,7 @@ TEST(NearestNeighbour, KdTreesEqualBruteForce) {
 
 TEST(NearestNeighbour, SummaryOfALattice) {
   // A cell-centred 10^3 lattice: every nearest distance is the spacing 0.1, scaled median 1.
-  const LatticeSpec l{3, 10, Protocol::unit};
+  const LatticeSpec l{3, 10, Protocol::fair};
   PointSet p{3, Coordinates(3000, 0.0), Box{0.0, 1.0}};
   for (std::uint64_t i = 0; i < 1000; ++i) l.point(i, p.coordinates.data() + 3 * i);
   const auto s = summarize_nearest_neighbours(nearest_neighbour_distances(p, KnnBackend::nanoflann, 1), p);
@@ -99,7 +99,7 @@ TEST(NearestNeighbour, SearchEqualsBruteForceOnTiesAndDegenerateSets) {
   };
   for (int dimension : {2, 3, 5, 7}) {
     const int side = dimension == 7 ? 4 : dimension == 5 ? 6 : dimension == 3 ? 14 : 40;
-    const LatticeSpec l{dimension, side, Protocol::unit};
+    const LatticeSpec l{dimension, side, Protocol::fair};
     PointSet lattice{dimension, Coordinates(l.point_count() * static_cast<std::size_t>(dimension), 0.0), Box{0.0, 1.0}};
     for (std::uint64_t i = 0; i < l.point_count(); ++i) l.point(i, lattice.coordinates.data() + static_cast<std::size_t>(dimension) * i);
     check(lattice, std::to_string(dimension) + "D lattice");
@@ -141,7 +141,7 @@ TEST(NearestNeighbour, SearchBuildsAgree) {
     PointSet small = uniform_random_points(dimension, 2500, Box{0.0, 1.0}, 60 + dimension, 1);
     for (int k = 0; k < 5; ++k) small.coordinates.insert(small.coordinates.end(), small.point(k * 13), small.point(k * 13) + dimension);
     const int side = dimension >= 7 ? 3 : dimension == 6 ? 4 : dimension == 5 ? 5 : dimension == 4 ? 7 : dimension == 3 ? 12 : 40;
-    const LatticeSpec l{dimension, side, Protocol::unit};
+    const LatticeSpec l{dimension, side, Protocol::fair};
     PointSet lattice{dimension, Coordinates(l.point_count() * static_cast<std::size_t>(dimension), 0.0), Box{0.0, 1.0}};
     for (std::uint64_t i = 0; i < l.point_count(); ++i) l.point(i, lattice.coordinates.data() + static_cast<std::size_t>(dimension) * i);
     const PointSet large = uniform_random_points(dimension, 20000, Box{0.0, 1.0}, 40 + dimension, 1);
@@ -186,7 +186,7 @@ PointSet of_first_set(int dimension, bool lattice, std::uint64_t seed) {
   PointSet p{dimension, {}, Box{0.0, 1.0}};
   if (lattice) {
     const int side = dimension >= 7 ? 3 : dimension == 6 ? 4 : dimension == 5 ? 5 : dimension == 4 ? 7 : dimension == 3 ? 12 : 40;
-    const LatticeSpec l{dimension, side, Protocol::unit};
+    const LatticeSpec l{dimension, side, Protocol::fair};
     p.coordinates.resize(l.point_count() * static_cast<std::size_t>(dimension));
     for (std::uint64_t i = 0; i < l.point_count(); ++i) l.point(i, p.coordinates.data() + static_cast<std::size_t>(dimension) * i);
   } else {

@@ -68,7 +68,7 @@ TEST(PeriodicNeighbours, EveryBuildEqualsBruteForce) {
         random.coordinates.insert(random.coordinates.end(), x.begin(), x.end());
       }
       const int side = dimension >= 7 ? 3 : dimension == 6 ? 4 : dimension == 5 ? 5 : dimension == 4 ? 7 : dimension == 3 ? 12 : 40;
-      const LatticeSpec l{dimension, side, Protocol::unit};
+      const LatticeSpec l{dimension, side, Protocol::fair};
       PointSet lattice{dimension, Coordinates(l.point_count() * static_cast<std::size_t>(dimension)), box};
       for (std::uint64_t i = 0; i < l.point_count(); ++i) l.point(i, lattice.coordinates.data() + static_cast<std::size_t>(dimension) * i);
       for (double& x : lattice.coordinates) x = box.lo + box.side * x;
@@ -103,7 +103,7 @@ TEST(PeriodicNeighbours, NeighboursAcrossTheFaces) {
 
 // A cell-centred lattice is perfectly periodic: every minimum-image distance is the spacing.
 TEST(PeriodicNeighbours, LatticeOnTheTorus) {
-  const LatticeSpec l{4, 5, Protocol::unit};
+  const LatticeSpec l{4, 5, Protocol::fair};
   PointSet p{4, Coordinates(4 * 625, 0.0), Box{0.0, 1.0}};
   for (std::uint64_t i = 0; i < 625; ++i) l.point(i, p.coordinates.data() + 4 * i);
   for (double d : periodic_nearest_neighbour_distances(p, 2)) EXPECT_NEAR(d, 0.2, 1e-12);
@@ -128,7 +128,7 @@ TEST(PeriodicNeighbours, OfFirstEqualsTheFullFunctionAndBruteForce) {
       PointSet p{dimension, {}, box};
       if (lattice) {
         const int side = dimension >= 7 ? 3 : dimension == 6 ? 4 : dimension == 5 ? 5 : dimension == 4 ? 7 : dimension == 3 ? 12 : dimension == 2 ? 40 : 300;
-        const LatticeSpec l{dimension, side, Protocol::unit};
+        const LatticeSpec l{dimension, side, Protocol::fair};
         p.coordinates.resize(l.point_count() * static_cast<std::size_t>(dimension));
         for (std::uint64_t i = 0; i < l.point_count(); ++i) l.point(i, p.coordinates.data() + static_cast<std::size_t>(dimension) * i);
         for (double& x : p.coordinates) x = box.lo + box.side * x;  // 3 * (k + 0.5) / side: exact ties on most axes
@@ -170,9 +170,9 @@ TEST(PeriodicNeighbours, OfFirstSearchesThePointsAfterTheFirst) {
 // with its Poisson standard error (every pair counted twice).
 TEST(PeriodicRdf, UniformRandomPointsGiveOne) {
   for (int dimension : {2, 4, 6}) {
-    const PointSet p = uniform_random_points(dimension, 20000, Box{0.0, 1.0}, 3 + dimension, 2);
+    PointSet p = uniform_random_points(dimension, 20000, Box{0.0, 1.0}, 3 + dimension, 2);
+    p.domain = Domain::unit(DomainKind::torus);  // the torus' RDF: minimum-image pairs, no edge correction
     RdfOptions o;
-    o.periodic = true;
     o.bins = 10;
     o.max_queries = 3000;
     o.r_max = dimension == 2 ? 0.05 : (dimension == 4 ? 0.2 : 0.3);
@@ -189,9 +189,9 @@ TEST(PeriodicRdf, UniformRandomPointsGiveOne) {
 }
 
 TEST(PeriodicRdf, RefusesReachesOfHalfTheSide) {
-  const PointSet p = uniform_random_points(3, 500, Box{0.0, 1.0}, 5, 1);
+  PointSet p = uniform_random_points(3, 500, Box{0.0, 1.0}, 5, 1);
+  p.domain = Domain::unit(DomainKind::torus);
   RdfOptions o;
-  o.periodic = true;
   o.r_max = 0.5;
   EXPECT_THROW(radial_distribution(p, o, 1, 1), std::invalid_argument);
   o.r_max = 0.0;  // the default reach is capped below half the side

@@ -42,7 +42,7 @@ TEST(PowerSpectrum, UniformRandomPointsAreFlatAtOne) {
 // far above the flat level of random points; between them the spectrum is low.
 TEST(PowerSpectrum, JitteredLatticeShowsBraggPeaks) {
   constexpr int kGrid = 16;
-  LatticeSpec lattice{2, kGrid, Protocol::unit};
+  LatticeSpec lattice{2, kGrid, Protocol::fair};
   std::vector<PointSet> sets;
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
     PointSet s = jittered_lattice(lattice, seed, 0);
