@@ -4,9 +4,9 @@
 //
 // Every point of the three is a function of its index alone, and the library computes any range of
 // them with the bits of the whole set's rows (sobol_points_range, sobol_points_64, halton_points_range,
-// uniform_random_points_range): from point 0 they are the points of `dfvn-sample --points`. The
-// library's arrays are handed to NumPy without a copy (array_owning); their memory is never zero-filled
-// (core/bulk_memory.hpp), since the generators write every number.
+// uniform_random_points_range): from point 0 they are the points of `dfvn-sample --points`. Nothing is
+// zero-filled or copied: Sobol writes into the NumPy array itself (sobol_points_into), the others' library
+// arrays are handed to NumPy (array_owning).
 #include <algorithm>
 #include <cstdint>
 #include <string>
@@ -33,13 +33,22 @@ py::array_t<double> sequence(const std::string& method, int d, std::uint64_t sta
   if (method == "sobol" && digits != 32 && digits != 64)
     throw py::value_error("Sobol digits must be 32 or 64, got " + std::to_string(digits));
   const Box unit{0.0, 1.0};
+  if (method == "sobol" && digits == 32) {
+    // Straight into a NumPy array (no zero fill): NumPy's allocator reuses the memory of freed arrays,
+    // which warm loops of random(n) calls meet (a new library array would be fresh pages from 4 MB up).
+    py::array_t<double> out = new_array(count, static_cast<std::size_t>(d));
+    double* data = out.mutable_data();
+    {
+      py::gil_scoped_release unlocked;
+      sobol_points_into(d, start, count, unit, scramble ? Scramble::owen : Scramble::none, seed, threads, data);
+    }
+    return out;
+  }
   PointSet points;
   {
     py::gil_scoped_release unlocked;
-    if (method == "sobol" && digits == 64)
+    if (method == "sobol")
       points = sobol_points_64(d, start, count, unit, scramble ? Scramble::owen : Scramble::none, seed, threads);
-    else if (method == "sobol")
-      points = sobol_points_range(d, start, count, unit, scramble ? Scramble::owen : Scramble::none, seed, threads);
     else if (method == "halton")
       points = halton_points_range(d, start, count, unit, scramble, seed, threads);
     else

@@ -16,7 +16,8 @@ move it). The points depend only on the seed, never on the thread count (`worker
 
 Two kinds of engine:
 - Sequences (Sobol, Halton, Random): random(n) returns exactly the next n points of one sequence in
-  [0,1)^d; fast_forward(k) skips k points; reset() returns to point 0.
+  [0,1)^d; fast_forward(k) skips k points; reset() returns to point 0. They run on one thread unless
+  asked for more (threads=, workers=: -1 or 0 all cores), as SciPy's default workers=1.
 - Sets (CNJ, Jitter, JitterMatched, LatinHypercube; PoissonDisk, one growing sample): never more than the
   n points asked, as each class's docstring states.
 """
@@ -226,8 +227,8 @@ class Sobol(_Sequence):
     1..64, at most 2^bits points (ValueError past them, as SciPy's); bits <= 32 is the 32-digit sequence of
     `dfvn-sample` (scrambled: 32 scrambled digits and 20 random bits below them), 33..64 the sequence
     carried to 64 digits (coordinates: the top 53). optimization (default None): 'random-cd' or 'lloyd'
-    (SciPy's). seed (default None): see the module; the points depend on it only. threads (default 0:
-    all cores): the points never depend on it.
+    (SciPy's). seed (default None): see the module; the points depend on it only. threads (default 1, as
+    SciPy's workers=1; 0: all cores): the threads of random() without `workers`; the points never depend on it.
 
     random(n) returns the next n points and warns, as SciPy does, unless n and the points drawn before
     are powers of 2 (Sobol' points are balanced only at 2^m); random_base2(m) draws 2^m points and
@@ -237,7 +238,7 @@ class Sobol(_Sequence):
     MAXDIM = _core._sobol_max_dimensions
     _method = "sobol"
 
-    def __init__(self, d, *, scramble=True, bits=None, seed=None, optimization=None, threads=0):
+    def __init__(self, d, *, scramble=True, bits=None, seed=None, optimization=None, threads=1):
         super().__init__(d, optimization=optimization, seed=seed, threads=threads)
         self._init_quad = {"d": self.d, "scramble": True, "bits": bits, "optimization": optimization}
         if self.d > self.MAXDIM:
@@ -295,13 +296,13 @@ class Halton(_Sequence):
     d: dimension, 0 or more (the primes are generated). scramble (default True): random digit permutations
     (Braaten-Weller, SciPy's scheme), seeded; False: the plain sequence, SciPy's points. optimization
     (default None): 'random-cd' or 'lloyd' (SciPy's). seed (default None): see the module. threads
-    (default 0: all cores): the points never depend on it.
+    (default 1, as SciPy's workers=1; 0: all cores): the points never depend on it.
 
     random(n) returns the next n points; fast_forward(k) skips k points; reset() returns to point 0.
     Halton(d, seed=s).random(n) is `dfvn.sample("halton", d, n=n, seed=s)`."""
     _method = "halton"
 
-    def __init__(self, d, *, scramble=True, optimization=None, seed=None, threads=0):
+    def __init__(self, d, *, scramble=True, optimization=None, seed=None, threads=1):
         super().__init__(d, optimization=optimization, seed=seed, threads=threads)
         self._init_quad = {"d": self.d, "scramble": True, "optimization": optimization}
         if self.d > _core._halton_max_dimensions:
@@ -314,12 +315,12 @@ class Random(_Sequence):
     """Uniform random points in [0,1)^d, a counter-based sequence (point i depends on the seed and i only).
 
     d: dimension, 0 or more. optimization (default None): 'random-cd' or 'lloyd' (SciPy's). seed (default
-    None): see the module. threads (default 0: all cores). random(n) returns the next n points;
+    None): see the module. threads (default 1, as SciPy's workers=1; 0: all cores). random(n) returns the next n points;
     fast_forward(k) skips k points; reset() returns to point 0. Random(d, seed=s).random(n) is
     `dfvn.sample("random", d, n=n, seed=s)`."""
     _method = "random"
 
-    def __init__(self, d, *, optimization=None, seed=None, threads=0):
+    def __init__(self, d, *, optimization=None, seed=None, threads=1):
         super().__init__(d, optimization=optimization, seed=seed, threads=threads)
         self._init_quad = {"d": self.d, "optimization": optimization}
         self._seed_library(seed)

@@ -457,11 +457,18 @@ PointSet sobol_points(int dimension, std::uint64_t count, const Box& domain, Scr
 
 PointSet sobol_points_range(int dimension, std::uint64_t first, std::uint64_t count, const Box& domain, Scramble scramble,
                             std::uint64_t seed, int threads, Simd simd) {
+  if (dimension < 1) throw std::invalid_argument("Sobol needs at least one dimension");
+  PointSet out{dimension, Coordinates(count * static_cast<std::uint64_t>(dimension)), domain};
+  sobol_points_into(dimension, first, count, domain, scramble, seed, threads, out.coordinates.data(), simd);
+  return out;
+}
+
+void sobol_points_into(int dimension, std::uint64_t first, std::uint64_t count, const Box& domain, Scramble scramble,
+                       std::uint64_t seed, int threads, double* out, Simd simd) {
   if (first + count > (std::uint64_t{1} << 32) || first > (std::uint64_t{1} << 32))
     throw std::invalid_argument("at most 2^32 Sobol points");
   const SobolSequence sequence(dimension);
   const auto dims = static_cast<std::size_t>(dimension);
-  PointSet out{dimension, Coordinates(count * dims), domain};
   SobolBlocks blocks{sequence, {}, {}};
   const bool owen = scramble == Scramble::owen;
   blocks.walk.resize(static_cast<std::size_t>(SobolSequence::kBits) * SobolBlocks::stride(dims));
@@ -476,7 +483,7 @@ PointSet sobol_points_range(int dimension, std::uint64_t first, std::uint64_t co
   blocks.stream = stream_key(seed, Stream::sobol_scramble);
   blocks.lo = domain.lo;
   blocks.side = domain.side;
-  blocks.out = out.coordinates.data();
+  blocks.out = out;
   blocks.first = first;
   blocks.dims = dims;
   const FillBlock fill = choose_fill_block(dims, scramble, simd);
@@ -492,7 +499,6 @@ PointSet sobol_points_range(int dimension, std::uint64_t first, std::uint64_t co
     const std::uint64_t begin = (first_block + static_cast<std::uint64_t>(block)) * kBlock;
     fill(blocks, std::max(first, begin), std::min(end, begin + kBlock));
   }
-  return out;
 }
 
 std::uint64_t owen_scramble_64(std::uint64_t digits, std::uint64_t seed, int dim) {

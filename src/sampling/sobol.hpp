@@ -65,6 +65,11 @@ PointSet sobol_points(int dimension, std::uint64_t count, const Box& domain, Scr
 // Points first .. first + count - 1 of that set, the same bits as its rows (a streamed run's slabs).
 PointSet sobol_points_range(int dimension, std::uint64_t first, std::uint64_t count, const Box& domain, Scramble scramble,
                             std::uint64_t seed, int threads, Simd simd = Simd::best);
+// The same points written to `out` (count x dimension doubles, row-major), memory the caller owns: the
+// Python module writes into a NumPy array, whose allocator reuses freed memory where fresh pages would
+// have to be faulted in and zeroed by the kernel (core/bulk_memory.hpp).
+void sobol_points_into(int dimension, std::uint64_t first, std::uint64_t count, const Box& domain, Scramble scramble,
+                       std::uint64_t seed, int threads, double* out, Simd simd = Simd::best);
 
 // The same sequence carried to 64 digits (SciPy's Sobol(bits=33..64)): up to 2^64 points, the direction
 // numbers of the same table over 64 bits. Points first .. first + count - 1; throws std::invalid_argument
