@@ -93,6 +93,19 @@ def get_requires_for_build_sdist(config_settings=None):
     return []
 
 
+def _wheel_file():
+    return f"Wheel-Version: 1.0\nGenerator: dfvn_build\nRoot-Is-Purelib: false\nTag: {_tag()}\n"
+
+
+def prepare_metadata_for_build_wheel(metadata_directory, config_settings=None):
+    """The dist-info folder without building (pip asks for it first; build_wheel would build twice)."""
+    info = pathlib.Path(metadata_directory) / f"{NAME}-{_version()}.dist-info"
+    info.mkdir(parents=True, exist_ok=True)
+    (info / "METADATA").write_text(_metadata())
+    (info / "WHEEL").write_text(_wheel_file())
+    return info.name
+
+
 def build_wheel(wheel_directory, config_settings=None, metadata_directory=None):
     tree = _build_tree()
     jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", str(os.cpu_count() or 1))
@@ -103,7 +116,7 @@ def build_wheel(wheel_directory, config_settings=None, metadata_directory=None):
         files = _package_files(pathlib.Path(staging))
     info = f"{NAME}-{_version()}.dist-info"
     files += [(f"{info}/METADATA", _metadata().encode()),
-              (f"{info}/WHEEL", f"Wheel-Version: 1.0\nGenerator: dfvn_build\nRoot-Is-Purelib: false\nTag: {_tag()}\n".encode())]
+              (f"{info}/WHEEL", _wheel_file().encode())]
     record = "\n".join([_record_line(name, data) for name, data in files] + [f"{info}/RECORD,,"]) + "\n"
     wheel = f"{NAME}-{_version()}-{_tag()}.whl"
     with zipfile.ZipFile(pathlib.Path(wheel_directory) / wheel, "w", zipfile.ZIP_DEFLATED) as archive:
