@@ -11,6 +11,8 @@
 
 #include "dfvn/core/dimension.hpp"
 #include "dfvn/experiment/experiment.hpp"
+#include "dfvn/sampling/latin_hypercube.hpp"
+#include "dfvn/sampling/poisson_disk.hpp"
 #include "numpy_points.hpp"
 
 namespace dfvn::python {
@@ -152,6 +154,41 @@ py::tuple plan(const SampleArguments& a) {
   return py::make_tuple(p.requested, config.grid, p.domain.lo, p.domain.side);
 }
 
+// dfvn.LatinHypercube in any dimension: the library's generator in [0,1)^d (the bits of
+// `dfvn-sample --methods lhs` in 2..8 dimensions).
+py::array_t<double> latin_hypercube(int d, std::uint64_t n, std::uint64_t seed, int threads) {
+  if (d < 1) throw py::value_error("d must be at least 1, got " + std::to_string(d));
+  PointSet points;
+  {
+    py::gil_scoped_release unlocked;
+    points = latin_hypercube_points(d, n, Box{0.0, 1.0}, seed, threads);
+  }
+  return array_owning(std::move(points.coordinates), n, static_cast<std::size_t>(d));
+}
+
+// dfvn.PoissonDisk: the library's process in [0,1]^d stopped after max_points (the first points of a
+// longer run: the process does not depend on where it stops). Returns (points, saturated).
+py::tuple poisson_disk_points(int d, double radius, int ncandidates, std::uint64_t max_points, std::uint64_t seed,
+                              int threads) {
+  if (d < kMinDimension || d > kMaxDimension)
+    throw py::value_error("d must be in " + std::to_string(kMinDimension) + ".." + std::to_string(kMaxDimension) +
+                          " for Poisson disk sampling, got " + std::to_string(d));
+  PoissonDiskOptions options;
+  options.radius = radius;
+  options.candidates = ncandidates;
+  options.max_points = max_points;
+  options.domain = Box{0.0, 1.0};
+  options.validate(d);
+  PoissonDiskResult result;
+  {
+    py::gil_scoped_release unlocked;
+    result = poisson_disk(d, options, seed, threads);
+  }
+  const std::size_t count = result.points.size();
+  return py::make_tuple(array_owning(std::move(result.points.coordinates), count, static_cast<std::size_t>(d)),
+                        !result.reached_max_points);
+}
+
 }  // namespace
 
 void bind_sampling(py::module_& module) {
@@ -183,6 +220,11 @@ void bind_sampling(py::module_& module) {
                                bound, threads, max_memory_gib, field, phase, stretch, time});
     };
   };
+  module.def("_latin_hypercube", &latin_hypercube, "d"_a, "n"_a, "seed"_a, "threads"_a = 0,
+             "Internal: n Latin hypercube points in [0,1)^d (dfvn.LatinHypercube).");
+  module.def("_poisson_disk", &poisson_disk_points, "d"_a, "radius"_a, "ncandidates"_a, "max_points"_a, "seed"_a,
+             "threads"_a = 0, "Internal: the first max_points of a Poisson disk process in [0,1]^d, and whether it "
+             "saturated first (dfvn.PoissonDisk).");
   const char* doc = "Internal: one point set as `dfvn-sample --points` makes it (python/dfvn/qmc.py calls it).";
   for (const auto& [name, f] : {std::pair{"_generate", &generate}, std::pair{"_plan", &plan}}) {
     module.def(name, call(f), "method"_a, "d"_a, py::kw_only(), "grid"_a = py::none(), "n"_a = py::none(),

@@ -4,7 +4,6 @@
 #include <array>
 #include <bit>
 #include <cstring>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -24,41 +23,89 @@ Scramble parse_scramble(std::string_view name) {
 
 std::string_view to_string(Scramble scramble) { return scramble == Scramble::owen ? "owen" : "none"; }
 
+namespace {
+
+// Reads the packed table (data/joe_kuo_directions.md): a little-endian bit stream, given as hexadecimal
+// digits, read in fields of up to 24 bits.
+class PackedBits {
+ public:
+  explicit PackedBits(const char* hex) : hex_(hex) {}
+  std::uint32_t read(int width) {
+    while (held_ < width) {
+      buffer_ |= static_cast<std::uint64_t>(next_byte()) << held_;
+      held_ += 8;
+    }
+    const auto value = static_cast<std::uint32_t>(buffer_ & ((std::uint64_t{1} << width) - 1));
+    buffer_ >>= width;
+    held_ -= width;
+    return value;
+  }
+
+ private:
+  static int nibble(char c) {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    throw std::logic_error("the compiled-in Joe-Kuo table is damaged (a non-hexadecimal digit or its end)");
+  }
+  std::uint32_t next_byte() {
+    const int high = nibble(hex_[0]);
+    const int low = nibble(hex_[1]);
+    hex_ += 2;
+    return static_cast<std::uint32_t>(high << 4 | low);
+  }
+  const char* hex_;
+  std::uint64_t buffer_ = 0;
+  int held_ = 0;
+};
+
+constexpr int kDegreeBits = 5;  // the table's degrees are 1..18
+
+// The direction numbers v_0..v_(B-1) of one row over B-bit words, v_k = m_(k+1) 2^(B-1-k) for k < s, then
+// the recurrence of the primitive polynomial (Joe & Kuo 2008, Eq. 2):
+// v_k = a_1 v_(k-1) ^ ... ^ a_(s-1) v_(k-s+1) ^ v_(k-s) ^ (v_(k-s) >> s).
+// Dimension 1 (degree 0) is van der Corput, v_k = 2^(B-1-k).
+template <class Word>
+std::array<Word, 8 * sizeof(Word)> direction_numbers(const JoeKuoRow& row) {
+  constexpr int kWordBits = 8 * sizeof(Word);
+  std::array<Word, kWordBits> v{};
+  const int s = row.degree;
+  if (s == 0) {
+    for (int k = 0; k < kWordBits; ++k) v[k] = Word{1} << (kWordBits - 1 - k);
+    return v;
+  }
+  for (int k = 0; k < s; ++k) v[k] = static_cast<Word>(row.initial[k]) << (kWordBits - 1 - k);
+  for (int k = s; k < kWordBits; ++k) {
+    Word value = v[k - s] ^ (v[k - s] >> s);
+    for (int i = 1; i < s; ++i)
+      if ((row.coefficients >> (s - 1 - i)) & 1U) value ^= v[k - i];
+    v[k] = value;
+  }
+  return v;
+}
+
+}  // namespace
+
+std::vector<JoeKuoRow> joe_kuo_rows(int dimensions) {
+  if (dimensions < 1 || dimensions > kSobolMaxDimensions)
+    throw std::invalid_argument("Sobol direction numbers are available for 1.." + std::to_string(kSobolMaxDimensions) +
+                                " dimensions, asked for " + std::to_string(dimensions));
+  std::vector<JoeKuoRow> rows(static_cast<std::size_t>(dimensions));  // row 0: van der Corput, degree 0
+  PackedBits table(kJoeKuoPackedHex);
+  for (std::size_t d = 1; d < rows.size(); ++d) {
+    JoeKuoRow& row = rows[d];
+    row.degree = static_cast<int>(table.read(kDegreeBits));
+    if (row.degree < 1 || row.degree > static_cast<int>(row.initial.size()))
+      throw std::logic_error("the compiled-in Joe-Kuo table is damaged (degree " + std::to_string(row.degree) + ")");
+    row.coefficients = table.read(row.degree - 1);
+    // m_k is odd and below 2^k: the table holds (m_k - 1) / 2 in k - 1 bits.
+    for (int k = 1; k <= row.degree; ++k) row.initial[static_cast<std::size_t>(k - 1)] = 2 * table.read(k - 1) + 1;
+  }
+  return rows;
+}
+
 SobolSequence::SobolSequence(int dimensions) {
   if (dimensions < 1) throw std::invalid_argument("Sobol needs at least one dimension");
-  // Dimension 1: van der Corput, v_k = 2^(31-k).
-  std::array<std::uint32_t, kBits> first{};
-  for (int k = 0; k < kBits; ++k) first[k] = std::uint32_t{1} << (kBits - 1 - k);
-  directions_.push_back(first);
-
-  std::istringstream table(kJoeKuoDirectionNumbers);
-  std::string line;
-  while (static_cast<int>(directions_.size()) < dimensions && std::getline(table, line)) {
-    if (line.empty() || line[0] == '#' || line[0] == 'd') continue;
-    std::istringstream row(line);
-    int d = 0, s = 0;
-    std::uint32_t a = 0;
-    row >> d >> s >> a;
-    std::array<std::uint32_t, kBits> v{};
-    for (int k = 0; k < s; ++k) {
-      std::uint32_t m = 0;
-      row >> m;
-      v[k] = m << (kBits - 1 - k);
-    }
-    if (!row || d != static_cast<int>(directions_.size()) + 1) throw std::logic_error("malformed Joe-Kuo table row: " + line);
-    // Recurrence of the primitive polynomial x^s + a_1 x^(s-1) + ... + a_(s-1) x + 1 (Joe & Kuo, Eq. 2):
-    // v_k = a_1 v_(k-1) ^ ... ^ a_(s-1) v_(k-s+1) ^ v_(k-s) ^ (v_(k-s) >> s).
-    for (int k = s; k < kBits; ++k) {
-      std::uint32_t value = v[k - s] ^ (v[k - s] >> s);
-      for (int i = 1; i < s; ++i)
-        if ((a >> (s - 1 - i)) & 1U) value ^= v[k - i];
-      v[k] = value;
-    }
-    directions_.push_back(v);
-  }
-  if (static_cast<int>(directions_.size()) < dimensions)
-    throw std::invalid_argument("Sobol direction numbers are available for " + std::to_string(directions_.size()) +
-                                " dimensions, asked for " + std::to_string(dimensions));
+  for (const JoeKuoRow& row : joe_kuo_rows(dimensions)) directions_.push_back(direction_numbers<std::uint32_t>(row));
 }
 
 std::uint32_t SobolSequence::digits(std::uint32_t index, int dim) const {
@@ -121,6 +168,7 @@ struct SobolBlocks {
   double lo = 0.0, side = 1.0;
   double* out = nullptr;   // point `first`'s row
   std::uint64_t first = 0;
+  std::size_t dims = 0;    // the dimension (fill_block_any reads it; the other kernels have it as D)
 };
 
 // A GCC/Clang vector of `bytes` bytes of T (the attribute cannot be written on a dependent alias).
@@ -261,6 +309,48 @@ template <std::size_t D>
   }
 }
 
+// Any dimension, for those above the unrolled kernels (kUnrolledDimensions): one point at a time, each
+// step a loop over the D coordinates that the compiler vectorises (at least 16 lanes here). Same bits
+// as fill_block_with: the same digits, keys, hashes and arithmetic, coordinate by coordinate, so a
+// coordinate's value never depends on the dimension (tests/sampling/test_sobol.cpp).
+template <Scramble S>
+[[gnu::always_inline]] inline void fill_block_any_with(const SobolBlocks& b, std::uint64_t begin, std::uint64_t end) {
+  constexpr std::uint64_t kOneBits = 0x3ff0000000000000;  // the bits of 1.0
+  const std::size_t dims = b.dims;
+  const std::size_t words_per_point = (dims + 2) / 3;    // 64-bit hashes per point, 20 bits per coordinate
+  std::vector<std::uint32_t> current(dims), high(dims), low(3 * words_per_point);
+  std::vector<std::uint64_t> words(words_per_point);
+  for (std::size_t j = 0; j < dims; ++j) {
+    const std::uint32_t d = b.sequence.digits(static_cast<std::uint32_t>(begin), static_cast<int>(j));
+    current[j] = S == Scramble::owen ? reverse_bits(d) : d;
+  }
+  const std::uint32_t* keys = b.keys.data();
+  const double lo = b.lo, side = b.side;  // locals: the stores below cannot alias them
+  for (std::uint64_t i = begin; i < end; ++i) {
+    double* x = b.out + (i - b.first) * dims;
+    if constexpr (S == Scramble::owen) {
+      const std::uint64_t point_key = hash_combine(b.stream, i);
+      for (std::size_t w = 0; w < words_per_point; ++w) words[w] = hash_combine(point_key, 1 + w);
+      for (std::size_t w = 0; w < words_per_point; ++w)
+        for (std::size_t part = 0; part < 3; ++part)
+          low[3 * w + part] = static_cast<std::uint32_t>(words[w] >> (20 * part)) << 12;
+      for (std::size_t j = 0; j < dims; ++j) high[j] = owen_scramble_reversed(current[j], keys[j]);
+      for (std::size_t j = 0; j < dims; ++j) {
+        const std::uint64_t bits = (((std::uint64_t{high[j]} << 32) | low[j]) >> 12) | kOneBits;
+        double unit;
+        std::memcpy(&unit, &bits, sizeof unit);
+        x[j] = lo + side * (unit - 1.0);
+      }
+    } else {
+      for (std::size_t j = 0; j < dims; ++j) x[j] = lo + side * (static_cast<double>(current[j]) * 0x1.0p-32);
+    }
+    if (i + 1 < end) {
+      const std::uint32_t* row = b.walk.data() + static_cast<std::size_t>(std::countr_zero(i + 1)) * SobolBlocks::stride(dims);
+      for (std::size_t j = 0; j < dims; ++j) current[j] ^= row[j];
+    }
+  }
+}
+
 // The batches pay in 1D-3D, where one point fills few lanes: 2^21 2D points in 37-40 ms against 55-68
 // per point, 3D 43-46 against 66-79 (one thread, fresh memory, load 9-13); in 4D-7D the two were within
 // the noise, so those keep the per-point kernel.
@@ -285,33 +375,73 @@ template <std::size_t D, Scramble S>
 }
 #endif
 
-// One build's kernels for dimensions 1 ... kMaxDimensions, indexed by dimension - 1.
+template <Scramble S>
+void fill_block_any(const SobolBlocks& b, std::uint64_t begin, std::uint64_t end) {
+  fill_block_any_with<S>(b, begin, end);
+}
+#if defined(__x86_64__)
+template <Scramble S>
+[[gnu::target("avx2")]] void fill_block_any_avx2(const SobolBlocks& b, std::uint64_t begin, std::uint64_t end) {
+  fill_block_any_with<S>(b, begin, end);
+}
+#endif
+
+// One build's kernels for dimensions 1 ... kUnrolledDimensions, indexed by dimension - 1. Dimensions
+// above take fill_block_any: each unrolled dimension is four more kernels to compile, and from 16
+// coordinates on a loop over them fills the vectors anyway.
 using FillBlock = void (*)(const SobolBlocks&, std::uint64_t, std::uint64_t);
-constexpr int kMaxDimensions = 15;  // the rows of the direction table; SobolSequence throws above it
+constexpr int kUnrolledDimensions = 15;
 
 template <Scramble S, bool kAvx2>
-constexpr std::array<FillBlock, kMaxDimensions> fill_block_table() {
+constexpr std::array<FillBlock, kUnrolledDimensions> fill_block_table() {
   return []<std::size_t... I>(std::index_sequence<I...>) {
 #if defined(__x86_64__)
-    if constexpr (kAvx2) return std::array<FillBlock, kMaxDimensions>{&fill_block_avx2<I + 1, S>...};
+    if constexpr (kAvx2) return std::array<FillBlock, kUnrolledDimensions>{&fill_block_avx2<I + 1, S>...};
 #endif
-    return std::array<FillBlock, kMaxDimensions>{&fill_block<I + 1, S>...};
-  }(std::make_index_sequence<kMaxDimensions>{});
+    return std::array<FillBlock, kUnrolledDimensions>{&fill_block<I + 1, S>...};
+  }(std::make_index_sequence<kUnrolledDimensions>{});
 }
 
 // The kernel for a dimension, scramble and instruction set, chosen once per call of sobol_points.
 FillBlock choose_fill_block(std::size_t dims, Scramble scramble, Simd simd) {
+  const bool owen = scramble == Scramble::owen;
+  const bool unrolled = dims <= static_cast<std::size_t>(kUnrolledDimensions);
 #if defined(__x86_64__)
   if (simd == Simd::best && cpu_has_avx2()) {
     static constexpr auto kOwen = fill_block_table<Scramble::owen, true>();
     static constexpr auto kNone = fill_block_table<Scramble::none, true>();
-    return (scramble == Scramble::owen ? kOwen : kNone)[dims - 1];
+    if (!unrolled) return owen ? &fill_block_any_avx2<Scramble::owen> : &fill_block_any_avx2<Scramble::none>;
+    return (owen ? kOwen : kNone)[dims - 1];
   }
 #endif
   (void)simd;
   static constexpr auto kOwen = fill_block_table<Scramble::owen, false>();
   static constexpr auto kNone = fill_block_table<Scramble::none, false>();
-  return (scramble == Scramble::owen ? kOwen : kNone)[dims - 1];
+  if (!unrolled) return owen ? &fill_block_any<Scramble::owen> : &fill_block_any<Scramble::none>;
+  return (owen ? kOwen : kNone)[dims - 1];
+}
+
+std::uint64_t reverse_bits_64(std::uint64_t x) {
+  return std::uint64_t{reverse_bits(static_cast<std::uint32_t>(x))} << 32 | reverse_bits(static_cast<std::uint32_t>(x >> 32));
+}
+
+// owen_scramble_reversed on 64 bits: adding the key, x ^= x * even constant and x *= odd constant each
+// change a bit only according to the bits below it (the digits above it, reversed), so the result is a
+// nested scramble of the digits; the constants are SplitMix64's multipliers and the golden-ratio
+// increment, made even or odd.
+std::uint64_t owen_scramble_reversed_64(std::uint64_t reversed_digits, std::uint64_t key) {
+  std::uint64_t x = reversed_digits + key;
+  x ^= x * 0xBF58476D1CE4E5BAULL;
+  x ^= x * 0x94D049BB133111ECULL;
+  x *= 0x9E3779B97F4A7C15ULL;
+  x ^= x * 0xD6E8FEB86659FD94ULL;
+  return reverse_bits_64(x);
+}
+
+// Dimension `dim`'s key of the 64-digit scramble: lane 1 of its (seed, stream, dimension) word, apart from
+// the 32-digit scramble's lane 0.
+std::uint64_t owen_key_64(std::uint64_t seed, int dim) {
+  return random_bits(seed, Stream::sobol_scramble, static_cast<std::uint64_t>(dim), 1);
 }
 
 }  // namespace
@@ -327,12 +457,18 @@ PointSet sobol_points(int dimension, std::uint64_t count, const Box& domain, Scr
 
 PointSet sobol_points_range(int dimension, std::uint64_t first, std::uint64_t count, const Box& domain, Scramble scramble,
                             std::uint64_t seed, int threads, Simd simd) {
+  if (dimension < 1) throw std::invalid_argument("Sobol needs at least one dimension");
+  PointSet out{dimension, Coordinates(count * static_cast<std::uint64_t>(dimension)), domain};
+  sobol_points_into(dimension, first, count, domain, scramble, seed, threads, out.coordinates.data(), simd);
+  return out;
+}
+
+void sobol_points_into(int dimension, std::uint64_t first, std::uint64_t count, const Box& domain, Scramble scramble,
+                       std::uint64_t seed, int threads, double* out, Simd simd) {
   if (first + count > (std::uint64_t{1} << 32) || first > (std::uint64_t{1} << 32))
     throw std::invalid_argument("at most 2^32 Sobol points");
   const SobolSequence sequence(dimension);
-  if (dimension > kMaxDimensions) throw std::logic_error("the Sobol direction table grew: raise kMaxDimensions");
   const auto dims = static_cast<std::size_t>(dimension);
-  PointSet out{dimension, Coordinates(count * dims), domain};
   SobolBlocks blocks{sequence, {}, {}};
   const bool owen = scramble == Scramble::owen;
   blocks.walk.resize(static_cast<std::size_t>(SobolSequence::kBits) * SobolBlocks::stride(dims));
@@ -347,8 +483,9 @@ PointSet sobol_points_range(int dimension, std::uint64_t first, std::uint64_t co
   blocks.stream = stream_key(seed, Stream::sobol_scramble);
   blocks.lo = domain.lo;
   blocks.side = domain.side;
-  blocks.out = out.coordinates.data();
+  blocks.out = out;
   blocks.first = first;
+  blocks.dims = dims;
   const FillBlock fill = choose_fill_block(dims, scramble, simd);
   // Blocks of consecutive points are independent, so the points do not depend on the thread count (and a
   // range's blocks start at the whole set's block boundaries).
@@ -361,6 +498,51 @@ PointSet sobol_points_range(int dimension, std::uint64_t first, std::uint64_t co
   for (std::int64_t block = 0; block < block_count; ++block) {
     const std::uint64_t begin = (first_block + static_cast<std::uint64_t>(block)) * kBlock;
     fill(blocks, std::max(first, begin), std::min(end, begin + kBlock));
+  }
+}
+
+std::uint64_t owen_scramble_64(std::uint64_t digits, std::uint64_t seed, int dim) {
+  return owen_scramble_reversed_64(reverse_bits_64(digits), owen_key_64(seed, dim));
+}
+
+PointSet sobol_points_64(int dimension, std::uint64_t first, std::uint64_t count, const Box& domain, Scramble scramble,
+                         std::uint64_t seed, int threads) {
+  if (count > 0 && first + (count - 1) < first)
+    throw std::invalid_argument("at most 2^64 Sobol points: point " + std::to_string(first) + " + " +
+                                std::to_string(count) + " - 1 is past 2^64 - 1");
+  const auto dims = static_cast<std::size_t>(dimension);
+  std::vector<std::array<std::uint64_t, 64>> directions;
+  for (const JoeKuoRow& row : joe_kuo_rows(dimension)) directions.push_back(direction_numbers<std::uint64_t>(row));
+  std::vector<std::uint64_t> keys(dims);
+  for (std::size_t j = 0; j < dims; ++j) keys[j] = owen_key_64(seed, static_cast<int>(j));
+  PointSet out{dimension, Coordinates(count * dims), domain};
+  // Blocks of consecutive points, each starting from the digits of its first point (Gray code of its
+  // index, as SobolSequence::digits): the points do not depend on the thread count.
+  constexpr std::uint64_t kBlock = 4096;
+  const auto blocks = static_cast<std::int64_t>((count + kBlock - 1) / kBlock);
+#pragma omp parallel for schedule(static) num_threads(resolve_threads(threads)) if (worth_threads(count * dims))
+  for (std::int64_t block = 0; block < blocks; ++block) {
+    const std::uint64_t begin = static_cast<std::uint64_t>(block) * kBlock;
+    const std::uint64_t end = std::min(count, begin + kBlock);
+    std::vector<std::uint64_t> digits(dims);
+    const std::uint64_t start = first + begin;
+    for (std::size_t j = 0; j < dims; ++j) {
+      std::uint64_t gray = start ^ (start >> 1);
+      for (int k = 0; gray != 0; ++k, gray >>= 1)
+        if (gray & 1U) digits[j] ^= directions[j][static_cast<std::size_t>(k)];
+    }
+    for (std::uint64_t at = begin; at < end; ++at) {
+      double* x = out.coordinates.data() + at * dims;
+      for (std::size_t j = 0; j < dims; ++j) {
+        const std::uint64_t value =
+            scramble == Scramble::owen ? owen_scramble_reversed_64(reverse_bits_64(digits[j]), keys[j]) : digits[j];
+        x[j] = domain.lo + domain.side * (static_cast<double>(value >> 11) * 0x1.0p-53);
+      }
+      if (at + 1 < end) {
+        const auto bit = static_cast<std::size_t>(std::countr_zero(first + at + 1));
+        for (std::size_t j = 0; j < dims; ++j) digits[j] ^= directions[j][bit];
+      }
+    }
   }
   return out;
 }

@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
 # `cmake --install` into a temporary prefix, then use the installed tree as a user would: the binary,
-# the man page and completion, and a consumer project built with find_package(dfvn) and with
-# pkg-config, whose field values must equal the installed dfvn-sample's to the last bit.
+# the man page and completion, a consumer project built with find_package(dfvn) and with
+# pkg-config, whose field values must equal the installed dfvn-sample's to the last bit, and the Python
+# package dfvn (imported from the prefix's site folder, and from `pip install .`'s wheel).
 # Environment: DFVN_BUILD_DIR, DFVN_SOURCE_DIR, DFVN_LIBDIR (CMAKE_INSTALL_LIBDIR), DFVN_DATA_DIR,
-# DFVN_MAN_PAGE (1 when help2man made one), CXX (the compiler).
+# DFVN_MAN_PAGE (1 when help2man made one), CXX (the compiler), DFVN_PYTHON (the interpreter the module is
+# built for; empty when it is not built) and DFVN_PYTHON_INSTALL_DIR (its folder under the prefix).
 set -euo pipefail
 : "${DFVN_BUILD_DIR:?}" "${DFVN_SOURCE_DIR:?}" "${DFVN_LIBDIR:?}" "${DFVN_DATA_DIR:?}" "${DFVN_MAN_PAGE:?}" "${CXX:?}"
+: "${DFVN_PYTHON=}" "${DFVN_PYTHON_INSTALL_DIR=}"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
@@ -104,3 +107,31 @@ echo "ok: find_package(dfvn) consumer: c = $got"
 got=$(env -u LD_LIBRARY_PATH "$work/consumer_pc" "${point[@]}")
 [[ $got == "$expected" ]] || fail "pkg-config consumer: c = $got, dfvn-sample field: $expected"
 echo "ok: pkg-config consumer: c = $got"
+
+# The Python package, from the moved prefix's site folder: the interpreter finds it with that folder on
+# PYTHONPATH, and the module finds the installed libdfvn through its relative rpath (no LD_LIBRARY_PATH).
+# Run from an empty folder, so that nothing of the source or build tree is imported instead.
+if [[ -n $DFVN_PYTHON ]]; then
+  site=$prefix/$DFVN_PYTHON_INSTALL_DIR
+  [[ -e $site/dfvn/__init__.py && -e $site/dfvn/qmc.py ]] || fail "the Python package is not in $site/dfvn"
+  mkdir "$work/elsewhere"
+  probe='import dfvn, sys; assert dfvn.__file__.startswith(sys.argv[1]), dfvn.__file__; print(dfvn.Sobol(3, seed=5).random(4).tobytes().hex())'
+  from_prefix=$(cd "$work/elsewhere" && env -u LD_LIBRARY_PATH PYTHONPATH="$site" "$DFVN_PYTHON" -c "$probe" "$site") ||
+    fail "import dfvn from $site fails"
+  # With prefix /usr/local the same folder is on the interpreter's own path: no setting needed there.
+  "$DFVN_PYTHON" -c 'import sys; p = "/usr/local/" + sys.argv[1]; assert p in sys.path, p + " not in " + str(sys.path)' \
+    "$DFVN_PYTHON_INSTALL_DIR" || fail "cmake --install --prefix /usr/local would put dfvn off the interpreter's path"
+  echo "ok: import dfvn from <prefix>/$DFVN_PYTHON_INSTALL_DIR"
+  # pip install . --no-build-isolation, offline, from this build tree (DFVN_CMAKE_BUILD_DIR: no second build):
+  # the wheel holds the package and libdfvn; the same points as the cmake-installed package.
+  if "$DFVN_PYTHON" -m pip --version >/dev/null 2>&1; then
+    DFVN_CMAKE_BUILD_DIR=$DFVN_BUILD_DIR PIP_NO_INPUT=1 "$DFVN_PYTHON" -m pip install "$DFVN_SOURCE_DIR" --no-build-isolation \
+      --no-deps --no-index --target "$work/pip" >"$work/pip.log" 2>&1 || { cat "$work/pip.log" >&2; fail "pip install . fails"; }
+    from_wheel=$(cd "$work/elsewhere" && env -u LD_LIBRARY_PATH PYTHONPATH="$work/pip" "$DFVN_PYTHON" -c "$probe" "$work/pip") ||
+      fail "import dfvn from pip's install fails"
+    [[ $from_wheel == "$from_prefix" ]] || fail "pip's dfvn and cmake's dfvn give other points"
+    echo "ok: pip install . --no-build-isolation"
+  else
+    echo "skipped: pip install . ($DFVN_PYTHON has no pip: apt-get install python3-pip)"
+  fi
+fi

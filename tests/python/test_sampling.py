@@ -128,7 +128,7 @@ def test_same_seed_same_bits_other_seed_other_points_any_threads():
         (("sobol", 3), {"n": -5}, ValueError, "n must be at least 1"),
         (("sobol", 3), {"n": 2.5}, TypeError, "n must be an int"),
         (("cnj", 3), {"grid": 4, "frequency": 0.2}, TypeError, "cycles_per_spacing"),
-        (("cnj", 3), {"grid": 4, "seed": "one"}, TypeError, "seed must be None, an int or a numpy.random.Generator"),
+        (("cnj", 3), {"grid": 4, "seed": "one"}, ValueError, "'one' cannot be used to seed a numpy.random.Generator"),
     ],
 )
 def test_sample_refuses_bad_arguments_with_a_clear_error(args, kwargs, error, words):

@@ -60,7 +60,8 @@ TEST(Halton, DeterministicPerSeedAndIndependentOfThreads) {
   EXPECT_EQ(a.coordinates, halton_points(5, 1000, Box{0.0, 1.0}, true, 7, 4).coordinates);
   EXPECT_NE(a.coordinates, halton_points(5, 1000, Box{0.0, 1.0}, true, 8, 1).coordinates);
   EXPECT_NE(a.coordinates, halton_points(5, 1000, Box{0.0, 1.0}, false, 7, 1).coordinates);
-  EXPECT_THROW(halton_points(17, 10, Box{0.0, 1.0}, true, 7, 1), std::invalid_argument);
+  EXPECT_THROW(halton_points(0, 10, Box{0.0, 1.0}, true, 7, 1), std::invalid_argument);
+  EXPECT_THROW(halton_points(kHaltonMaxDimensions + 1, 10, Box{0.0, 1.0}, true, 7, 1), std::invalid_argument);
 }
 
 // Latin hypercube: on every axis each of the n strata [m/n, (m+1)/n) holds exactly one point.
