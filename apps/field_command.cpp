@@ -29,6 +29,7 @@ struct FieldCommand : Subcommand {
   double phase = 0.0;
   TransformOptions transform;
   SteerOptions steer;
+  BridsonOptions bridson;
   std::string noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
   std::string field_kind{dfvn::to_string(dfvn::kDefaultFieldKind)};
   std::string domain = "free";
@@ -85,6 +86,7 @@ struct FieldCommand : Subcommand {
                     "Bridson's psi_c = alpha psi + (1 - alpha) n (n . psi) for 3D curl noise. Each obstacle with its\n"
                     "zone must lie inside the domain clear of the wall's zone and of the other obstacles' zones")
         ->take_all();
+    bridson.add_to(*cmd);
     CLI::Option* input_option =
         cmd->add_option("--input", input, "Point file to read, CSV or whitespace-separated (default: standard input)")
             ->check(CLI::ExistingFile);
@@ -126,6 +128,7 @@ struct FieldCommand : Subcommand {
       o.bound = dfvn::parse_bound(bound);
       for (const std::string& spec : obstacles) o.obstacles.push_back(dfvn::parse_obstacle(spec));
     }
+    o.flow = bridson.flow();
     return o;
   }
 

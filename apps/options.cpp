@@ -266,6 +266,64 @@ std::vector<std::pair<std::string, std::string>> TransformOptions::input_files()
   return {};
 }
 
+void BridsonOptions::add_to(CLI::App& cmd) {
+  cmd.add_option("--octaves", octaves,
+                 fmt::format("Octaves K of the noise (Bridson et al. 2007, Section 2.2), in [1, {}]: octave o is an\n"
+                             "independently seeded instance at 2^o times --frequency, with its own boundary width w / 2^o;\n"
+                             "weights g^o / sqrt(sum g^2k) keep RMS |c| = 1 (for --field curl each octave's energy is\n"
+                             "its weight squared; for dfvn the weights apply to every f_i). 1 is the field without\n"
+                             "octaves, bit for bit",
+                             dfvn::kMaxOctaves))
+      ->capture_default_str()
+      ->check(CLI::Range(1, dfvn::kMaxOctaves));
+  cmd.add_option("--octave-gain", octave_gain,
+                 "With --octaves: the velocity ratio g from one octave to the next (half the length scale), any\n"
+                 "finite g > 0; default Kolmogorov's 2^(-1/3) = 0.7937 (energy spectrum k^(-5/3))")
+      ->capture_default_str()
+      ->check(kPositiveFinite);
+  cmd.add_option("--amplitude", amplitude,
+                 "Modulate the potential by A(x) (Bridson Section 2.3; for dfvn f_1, in 3D the potential f_1\n"
+                 "grad f_2): constant:A, height:Z0,Z1 (the C2 smoothstep from 0 at x_N = Z0 to 1 at Z1) or\n"
+                 "obstacles:D (1 on every --obstacle and --body, 0 once all are D away); repeatable, the\n"
+                 "product; still exactly divergence-free. Default: none (A = 1)")
+      ->type_name("SHAPE")
+      ->take_all();
+  cmd.add_flag("--viscous", viscous,
+               "With --domain cube or ball: no-slip solids (Bridson Section 2.4): the potential times the C2\n"
+               "smoothstep S(d / w) of the distance to the wall and to every obstacle and body, so c = 0 on\n"
+               "them (a --body's surface moves with it). Default: off (c tangent to them)");
+  cmd.add_option("--body", bodies,
+                 "With --field curl in 3D and --domain cube or ball: a moving rigid sphere\n"
+                 "sphere:CX,CY,CZ,R,VX,VY,VZ,WX,WY,WZ (centre, radius, velocity V, angular velocity W; Bridson\n"
+                 "Eq. 6 with V x r / 2, blended to 0 at 2R from the centre): on its surface c . n equals\n"
+                 "(V + W x (x - centre)) . n. Repeatable; default none")
+      ->type_name("SPEC")
+      ->take_all();
+  cmd.add_option("--vortex", vortices,
+                 "With --field curl in 3D: a vortex (Bridson Eqs. 7-8, fall-off 1 - S(d / R) to 0 at the core\n"
+                 "radius R): particle:CX,CY,CZ,WX,WY,WZ,R (rotation at angular velocity W about the centre) or\n"
+                 "ring:CX,CY,CZ,NX,NY,NZ,RR,W,R (a smoke ring of radius RR normal to N, angular velocity W about\n"
+                 "its core; W > 0 pushes through the ring along N). Repeatable; default none")
+      ->type_name("SPEC")
+      ->take_all();
+}
+
+dfvn::FlowOptions BridsonOptions::flow() const {
+  dfvn::FlowOptions f;
+  f.octaves = octaves;
+  f.octave_gain = octave_gain;
+  f.viscous = viscous;
+  try {
+    for (const std::string& spec : amplitude) f.amplitude.push_back(dfvn::parse_amplitude(spec));
+    for (const std::string& spec : bodies) f.bodies.push_back(dfvn::parse_body(spec));
+    for (const std::string& spec : vortices) f.vortices.push_back(dfvn::parse_vortex(spec));
+    f.validate();
+  } catch (const std::invalid_argument& e) {
+    fail(e.what());
+  }
+  return f;
+}
+
 void refuse_options(CLI::App& cmd, const std::vector<std::pair<std::string, std::string>>& names_and_messages) {
   std::vector<std::pair<const CLI::Option*, std::string>> refused;
   for (const auto& [name, message] : names_and_messages)

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "dfvn/core/progress.hpp"
+#include "dfvn/field/bridson_flow.hpp"
 #include "dfvn/field/field_transform.hpp"
 
 namespace dfvn_cli {
@@ -77,6 +78,24 @@ struct TransformOptions {
   // The files these options read, as (option, path) for dfvn::check_outputs: --lift npy:FILE's FILE.
   std::vector<std::pair<std::string, std::string>> input_files() const;
 };
+
+// Bridson et al. 2007's toolbox on the field (field/bridson_flow.hpp): --octaves K, --octave-gain G,
+// --amplitude SHAPE (repeatable), --viscous, --body sphere:... (repeatable), --vortex particle:...|ring:...
+// (repeatable). flow() parses them (fail() with one line on a malformed spec or value).
+struct BridsonOptions {
+  int octaves = 1;
+  double octave_gain = dfvn::kKolmogorovOctaveGain;
+  std::vector<std::string> amplitude;
+  bool viscous = false;
+  std::vector<std::string> bodies;
+  std::vector<std::string> vortices;
+
+  void add_to(CLI::App& cmd);
+  dfvn::FlowOptions flow() const;
+};
+
+// --rotation: how simplex noise's gradients turn with --phase (noise/rotating_gradients.hpp).
+void add_rotation_option(CLI::App& cmd, std::string& rotation);
 
 // Names that no longer mean what they meant here (issue 24's one vocabulary), each with the line that
 // names the option to use instead: hidden from the help, and giving one (with a value or without)

@@ -61,6 +61,7 @@ struct SampleCommand : Subcommand {
   CLI::Option* format_option = nullptr;
   TransformOptions transform;
   SteerOptions steer;
+  BridsonOptions bridson;
 
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
@@ -159,6 +160,7 @@ struct SampleCommand : Subcommand {
         ->check(CLI::IsMember({"none", "newton", "gauss-newton"}));
     add_phase_option(*cmd, config.cnj.phase);
     transform.add_to(*cmd);
+    bridson.add_to(*cmd);
     domain_option = cmd->add_option("--domain", domain,
                                     "Where CNJ's points stay: torus ([0,1)^N with opposite faces identified: a periodic\n"
                                     "field, wrapped traces, the cell-centred lattice; no boundary at all), cube ([0,1]^N)\n"
@@ -280,6 +282,7 @@ struct SampleCommand : Subcommand {
     }
     config.cnj.transform = transform.transform();
     config.cnj.transform.steer = steer.spec(noise, config.dimension);
+    config.cnj.flow = bridson.flow();
     if (config.cnj.transform.active())
       dfvn::check_transform_available(config.cnj.transform, config.dimension,
                                       config.on == dfvn::Surface::none && config.cnj.domain == dfvn::CnjDomain::torus);

@@ -54,6 +54,7 @@ set(DFVN_PUBLIC_HEADERS
     field/cross_product.hpp
     field/dfvn_field.hpp
     field/obstacles.hpp
+    field/bridson_flow.hpp
     field/diagnose.hpp
     field/evaluate_points.hpp
     field/field_transform.hpp

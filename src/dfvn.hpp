@@ -27,6 +27,7 @@
 #include "dfvn/field/cross_product.hpp"
 #include "dfvn/field/dfvn_field.hpp"
 #include "dfvn/field/obstacles.hpp"
+#include "dfvn/field/bridson_flow.hpp"
 #include "dfvn/field/diagnose.hpp"
 #include "dfvn/field/evaluate_points.hpp"
 #include "dfvn/field/field_transform.hpp"
