@@ -10,6 +10,7 @@
 #include "dfvn/io/atomic_file.hpp"
 #include "dfvn/io/markdown_text.hpp"
 #include "dfvn/plot/gnuplot.hpp"
+#include "dfvn/reproduce/bridson.hpp"
 #include "dfvn/reproduce/cnj_study.hpp"
 #include "dfvn/reproduce/constructions.hpp"
 #include "dfvn/reproduce/figure8.hpp"
@@ -53,6 +54,9 @@ struct ReproduceCommand : Subcommand {
   dfvn::Figure9Config figure9, figure10{.ramp_figure = false, .out_dir = "out/figure10"};
   std::string noise6{dfvn::to_string(dfvn::kDefaultNoiseBasis)}, noise7 = noise6, noise9 = noise6, noise10 = noise6;
   std::vector<double> slope9 = {1.0, 0.5}, slope10 = {1.0, 0.5};
+  // bridson (reproduce/bridson.hpp)
+  CommonOptions common_bridson;
+  dfvn::BridsonConfig bridson;
 
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand("reproduce", "Regenerate the paper's tables and figures, ours beside the paper's.");
@@ -159,10 +163,59 @@ struct ReproduceCommand : Subcommand {
     add_figure8(cmd);
     add_constructions(cmd);
     add_surface_figures(cmd);
+    add_bridson(cmd);
     // After the subcommands, which would otherwise inherit it.
     cmd->footer("Subcommands: table1, table2, cnj-study, integration, figure6, figure7, figure8, figure9,\n"
-                "figure10, constructions; each has --help ('dfvn-sample reproduce table1\n"
+                "figure10, constructions, bridson; each has --help ('dfvn-sample reproduce table1\n"
                 "--help'), and 'dfvn-sample --help-all' prints them all.");
+  }
+
+  void add_bridson(CLI::App* cmd) {
+    CLI::App* b = cmd->add_subcommand(
+        "bridson",
+        "Bridson et al. 2007's Figure 2 (seed 003) with --octaves, --amplitude, --body, --vortex and --viscous: a wake\n"
+        "behind a moving sphere and a vortex ring pushing fluid past a sphere before turbulent mixing, 3D curl noise in\n"
+        "the unit cube, traced particles drawn from the side; and the checks from the field itself (divergence, c . n on\n"
+        "the walls and the sphere, the moving body's normal velocity, no-slip with --viscous, energy per octave). Writes\n"
+        "DIR/bridson.md, DIR/bridson_checks.csv, DIR/bridson_octaves.csv, DIR/wake.png, DIR/ring.png, DIR/wake_traces.csv\n"
+        "and DIR/ring_traces.csv; prints bridson.md as plain text. The defaults take well under a minute.");
+    b->add_option("--out", bridson.out_dir, kOutDirHelp)->capture_default_str();
+    b->add_option("--frequency", bridson.frequency, "Noise frequency F of octave 0 in cycles per unit length, at most 64")
+        ->capture_default_str()
+        ->check(kNoiseFrequency);
+    b->add_option("--octaves", bridson.octaves,
+                  "Octaves K of the noise (Bridson et al. 2007, Section 2.2), in [1, 10], as field --octaves; 1 is the field\n"
+                  "without octaves")
+        ->capture_default_str();
+    b->add_option("--octave-gain", bridson.octave_gain,
+                  "With --octaves: the velocity ratio g from one octave to the next, any finite g > 0; default\n"
+                  "Kolmogorov's 2^(-1/3)")
+        ->capture_default_str();
+    b->add_option("--boundary-width", bridson.boundary_width,
+                  "The solids' transition width in length units (octave o: W / 2^o), in (0, 0.07]")
+        ->capture_default_str();
+    b->add_option("--grid", bridson.grid, "Lattice points per axis K of each scene's start lattice (K x K particles)")
+        ->capture_default_str();
+    b->add_option("--trace-steps", bridson.steps, "RK4 steps per particle trace (no reprojection: curl noise has none)")
+        ->capture_default_str();
+    b->add_option("--image", bridson.image, "Side of the PNG in pixels")->capture_default_str();
+    b->add_option("--check-points", bridson.check_points,
+                  "Random points of each divergence check and of each checked surface (the octaves' energies: 4x)")
+        ->capture_default_str();
+    progress.add_to(*b);
+    add_common_options(*b, common_bridson);
+    b->callback([this] { run_bridson(); });
+  }
+
+  void run_bridson() {
+    bridson.seed = common_bridson.seed;
+    bridson.threads = common_bridson.threads;
+    bridson.validate();
+    dfvn::check_outputs(files_in(bridson.out_dir, dfvn::bridson_output_files()), {bridson.out_dir});
+    dfvn::ProgressReporter* reporter = progress.make(dfvn::bridson_stage_weights(bridson));
+    const auto result = dfvn::run_bridson(bridson, reporter->callback());
+    reporter->complete();
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_bridson(result)).c_str(), stdout);
   }
 
   void run_cnj_study() {

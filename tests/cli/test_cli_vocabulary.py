@@ -149,7 +149,7 @@ check(help_all.returncode == 0, "--help-all exits 0")
 parts = sections(help_all.stdout)
 expected = ["dfvn-sample " + s for s in ["sample", "field", "reproduce", "reproduce table1", "reproduce table2",
                                           "reproduce cnj-study", "reproduce integration", "reproduce figure8", "reproduce constructions", "reproduce figure6",
-                                          "reproduce figure7", "reproduce figure9", "reproduce figure10", "stats",
+                                          "reproduce figure7", "reproduce figure9", "reproduce figure10", "reproduce bridson", "stats",
                                           "animate"]]
 check(sorted(parts) == sorted(expected), f"--help-all has a section per subcommand: {sorted(parts)}")
 
