@@ -30,6 +30,7 @@ struct FieldCommand : Subcommand {
   TransformOptions transform;
   SteerOptions steer;
   BridsonOptions bridson;
+  std::string rotation{dfvn::to_string(dfvn::kDefaultGradientRotation)};
   std::string noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
   std::string field_kind{dfvn::to_string(dfvn::kDefaultFieldKind)};
   std::string domain = "free";
@@ -64,6 +65,7 @@ struct FieldCommand : Subcommand {
     add_field_kind_option(*cmd, field_kind,
                           "With curl: --domain free or torus, or cube or ball\nwith --bound ramp; the columns f1..f{N-1} are then psi_1..psi_{N-1}");
     add_phase_option(*cmd, phase);
+    add_rotation_option(*cmd, rotation);
     transform.add_to(*cmd);
     cmd->add_option("--domain", domain,
                     "free (R^N), torus ([0,1)^N: the basis's periodic form, period 1 along every axis, at about F\n"
@@ -122,6 +124,7 @@ struct FieldCommand : Subcommand {
     o.phase = phase;
     o.transform = transform.transform();
     o.transform.steer = steer.spec(noise, dimension);
+    o.transform.rotation = dfvn::parse_gradient_rotation(rotation);
     if (domain == "cube" || domain == "ball") {
       o.constraint = domain == "cube" ? dfvn::FieldConstraint::inside_cube : dfvn::FieldConstraint::inside_ball;
       o.transition_width = boundary_width;

@@ -324,6 +324,17 @@ dfvn::FlowOptions BridsonOptions::flow() const {
   return f;
 }
 
+void add_rotation_option(CLI::App& cmd, std::string& rotation) {
+  cmd.add_option("--rotation", rotation,
+                 "How --noise simplex's gradients turn with --phase in 3D (McEwan & Gustavson, seed 001): two-vector\n"
+                 "(p cos a + q sin a, q a second hashed gradient made orthogonal to p: every dimension; phase 0 the\n"
+                 "basis's own noise), fast (one Fibonacci-sphere hash: axis and offset, no phase gives a static set)\n"
+                 "or well-behaved (p on the Fibonacci sphere, q by the rotation taking z to p: phase 0 is the\n"
+                 "Fibonacci gradients' noise bit for bit)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"two-vector", "fast", "well-behaved"}));
+}
+
 void refuse_options(CLI::App& cmd, const std::vector<std::pair<std::string, std::string>>& names_and_messages) {
   std::vector<std::pair<const CLI::Option*, std::string>> refused;
   for (const auto& [name, message] : names_and_messages)

@@ -62,6 +62,7 @@ struct SampleCommand : Subcommand {
   TransformOptions transform;
   SteerOptions steer;
   BridsonOptions bridson;
+  std::string rotation{dfvn::to_string(dfvn::kDefaultGradientRotation)};
 
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
@@ -159,6 +160,7 @@ struct SampleCommand : Subcommand {
         ->capture_default_str()
         ->check(CLI::IsMember({"none", "newton", "gauss-newton"}));
     add_phase_option(*cmd, config.cnj.phase);
+    add_rotation_option(*cmd, rotation);
     transform.add_to(*cmd);
     bridson.add_to(*cmd);
     domain_option = cmd->add_option("--domain", domain,
@@ -283,6 +285,7 @@ struct SampleCommand : Subcommand {
     config.cnj.transform = transform.transform();
     config.cnj.transform.steer = steer.spec(noise, config.dimension);
     config.cnj.flow = bridson.flow();
+    config.cnj.transform.rotation = dfvn::parse_gradient_rotation(rotation);
     if (config.cnj.transform.active())
       dfvn::check_transform_available(config.cnj.transform, config.dimension,
                                       config.on == dfvn::Surface::none && config.cnj.domain == dfvn::CnjDomain::torus);

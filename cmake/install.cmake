@@ -72,6 +72,7 @@ set(DFVN_PUBLIC_HEADERS
     noise/noise_functions.hpp
     noise/noise_transforms.hpp
     noise/simplex_noise.hpp
+    noise/rotating_gradients.hpp
     noise/simplex_separate.hpp
     noise/steerable_noise.hpp
     noise/turning_bands.hpp

@@ -95,7 +95,7 @@ py::tuple field(const PointArray& points, std::uint64_t seed, double frequency, 
                 const py::object& stretch, const std::optional<double>& time, const std::optional<std::string>& lift,
                 double lift_ramp, const py::object& steer, double steer_k, int octaves, double octave_gain,
                 const std::vector<std::string>& amplitude, bool viscous, const std::vector<std::string>& bodies,
-                const std::vector<std::string>& vortices) {
+                const std::vector<std::string>& vortices, const std::string& rotation) {
   const PointRows in = point_rows(points, kMinDimension, kMaxDimension);
   FieldQuery query;
   query.dimension = in.dimension;
@@ -103,6 +103,7 @@ py::tuple field(const PointArray& points, std::uint64_t seed, double frequency, 
   query.field = field_options(frequency, noise, phase, domain, bound, boundary_width, field_kind, obstacles,
                               noise_transform(stretch, time, lift, lift_ramp));
   query.field.flow = flow_options(octaves, octave_gain, amplitude, viscous, bodies, vortices);
+  query.field.transform.rotation = parse_gradient_rotation(rotation);
   // steer: None, 'circular' or a sequence of N reals (the direction U), with noise='steerable'.
   SteerSpec& spec = query.field.transform.steer;
   if (py::isinstance<py::str>(steer)) {
@@ -174,7 +175,7 @@ void bind_field(py::module_& module) {
              "stretch"_a = py::none(), "time"_a = py::none(), "lift"_a = py::none(), "lift_ramp"_a = 0.0,
              "steer"_a = py::none(), "steer_k"_a = kDefaultSteerK, "octaves"_a = 1, "octave_gain"_a = kKolmogorovOctaveGain,
              "amplitude"_a = std::vector<std::string>{}, "viscous"_a = false, "bodies"_a = std::vector<std::string>{},
-             "vortices"_a = std::vector<std::string>{},
+             "vortices"_a = std::vector<std::string>{}, "rotation"_a = std::string(to_string(kDefaultGradientRotation)),
              R"(The divergence-free field c(x) = cross(grad f_1, ..., grad f_{N-1}) (Eq. 8) at each point.
 
 points: (n, N) array, N = 2..8 (converted to float64 C order if it is not already).
@@ -203,6 +204,8 @@ none) with octave_gain (default 2^(-1/3), Kolmogorov's), amplitude (default []: 
 'height:Z0,Z1', 'obstacles:D', multiplied), viscous (default False: no-slip walls and obstacles), bodies
 (default []: 'sphere:CX,CY,CZ,R,VX,VY,VZ,WX,WY,WZ', field='curl' in 3D) and vortices (default []:
 'particle:CX,CY,CZ,WX,WY,WZ,R' or 'ring:CX,CY,CZ,NX,NY,NZ,RR,W,R', field='curl' in 3D).
+rotation (default 'two-vector'): how noise='simplex' turns its gradients with the phase in 3D, 'two-vector',
+'fast' or 'well-behaved' (seed 001, `--rotation`).
 
 Returns (c, f): c (n, N), the field vector (RMS |c| = 1), and f (n, N-1), the noise values f_i(x);
 the same numbers as `dfvn-sample field` writes.)");

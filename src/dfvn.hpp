@@ -48,6 +48,7 @@
 #include "dfvn/noise/noise_functions.hpp"
 #include "dfvn/noise/noise_transforms.hpp"
 #include "dfvn/noise/simplex_noise.hpp"
+#include "dfvn/noise/rotating_gradients.hpp"
 #include "dfvn/noise/simplex_separate.hpp"
 #include "dfvn/noise/steerable_noise.hpp"
 #include "dfvn/noise/turning_bands.hpp"

@@ -11,6 +11,8 @@
 #include "dfvn/core/hash.hpp"
 #include "dfvn/field/cross_product.hpp"
 #include "dfvn/noise/noise_domain.hpp"
+#include "dfvn/noise/simplex_noise.hpp"
+#include "dfvn/noise/simplex_noise.hpp"
 
 namespace dfvn {
 
@@ -56,6 +58,12 @@ void FieldOptions::validate() const {
       !(transition_width > 0.0 && transition_width <= 0.25))
     throw std::invalid_argument(
         fmt::format("the boundary's transition width must be in (0, 1/4], got {:g}", transition_width));
+  if (transform.rotation != GradientRotation::two_vector &&
+      (noise != NoiseBasis::simplex || transform.active() || periodic))
+    throw std::invalid_argument(fmt::format(
+        "--rotation {} turns the gradients of --noise simplex in 3D (seed 001), without --stretch, --time, --lift or the "
+        "torus; got --noise {}{}",
+        to_string(transform.rotation), to_string(noise), transform.active() ? " with a transform" : periodic ? " on the torus" : ""));
   flow.validate();
   if (periodic && (!flow.amplitude.empty() || flow.viscous || !flow.bodies.empty() || !flow.vortices.empty()))
     throw std::invalid_argument("the torus takes --octaves only: --amplitude, --viscous, --body and --vortex break its period");
@@ -115,6 +123,8 @@ std::shared_ptr<const NoiseFunctions<N>> field_noise(const FieldOptions& options
                                                      double lift_ramp = 0.0) {
   if (options.noise == NoiseBasis::steerable)  // validate() refuses a transform beside it
     return make_steerable_noise<N>(seed, options.phase, options.transform.steer);
+  if (options.transform.rotation != GradientRotation::two_vector)  // validate(): simplex, no transform, no torus
+    return make_rotating_simplex_noise<N>(seed, options.phase, options.transform.rotation);
   if (!options.transform.active())
     return options.periodic ? make_periodic_noise_functions<N>(options.noise, seed, options.frequency, options.phase)
                             : make_noise_functions<N>(options.noise, seed, options.phase);

@@ -14,6 +14,7 @@
 #include "dfvn/core/dimension.hpp"
 #include "dfvn/noise/noise_functions.hpp"
 #include "dfvn/noise/noise_transforms.hpp"
+#include "dfvn/noise/rotating_gradients.hpp"
 #include "dfvn/noise/steerable_noise.hpp"
 
 namespace dfvn {
@@ -66,6 +67,9 @@ struct NoiseTransform {
   // Not a transform of the basis but its parameters, carried here so that every path that takes a field's
   // transform (field, sample, animate, Python) takes them; not counted by active() (the basis reads them).
   SteerSpec steer;
+  // --rotation: how --noise simplex's gradients turn with the phase in 3D (noise/rotating_gradients.hpp); carried
+  // here for the same reason as `steer`, not counted by active().
+  GradientRotation rotation = kDefaultGradientRotation;
 
   bool active() const { return !stretch_direction.empty() || time.has_value() || lift.active(); }
   // Throws std::invalid_argument with one line for a zero or non-finite direction, S outside

@@ -58,6 +58,7 @@ SHARED = {
     "--viscous": ["no-slip solids (bridson section 2.4)"],
     "--body": ["a moving rigid sphere", "sphere:cx,cy,cz,r,vx,vy,vz,wx,wy,wz"],
     "--vortex": ["particle:cx,cy,cz,wx,wy,wz,r", "ring:cx,cy,cz,nx,ny,nz,rr,w,r"],
+    "--rotation": ["how --noise simplex's gradients turn with --phase in 3d", "two-vector", "fast", "well-behaved"],
     "--frequency": ["cycles per unit length"],
     "--cycles-per-spacing": ["cycles per lattice spacing"],
     "--steps": ["cnj integration steps m"],
