@@ -137,6 +137,7 @@ struct FieldCommand : Subcommand {
 
   void run() {
     std::vector<std::pair<std::string, std::string>> inputs = transform.input_files();
+    for (const auto& file : steer.input_files()) inputs.push_back(file);
     inputs.emplace_back("--input", input.empty() ? std::string("-") : input);
     dfvn::check_outputs({{"--output", output}}, {}, inputs);
     if (field_kind == "curl" && (domain == "cube" || domain == "ball") && bound != "ramp")

@@ -145,17 +145,46 @@ void SteerOptions::add_to(CLI::App& cmd) {
                               "With --noise steerable: the metric's eigenvalue K along u, in (0, 1] (below 0.99993 in 4D);\n"
                               "across u it is (4 - K) / (N - 1) - 1e-4, so smaller K elongates more")
                    ->capture_default_str();
+  options[3] = cmd.add_option("--steer-quality", quality,
+                              "With --noise steerable: seed 002's quality Q in 0..N, the corners -Q..Q+1 along each axis\n"
+                              "((2Q+2)^N per function), the eigenvalue along u K / (Q + 1): larger Q elongates more and\n"
+                              "costs more; 0 is the single-order noise")
+                   ->capture_default_str()
+                   ->check(CLI::Range(0, dfvn::kMaxSteerableDimension));
+  options[4] = cmd.add_option("--steer-image", image,
+                              "With --noise steerable in 2D: steer along an image's direction field over the unit square\n"
+                              "(Figure 3): a .png flow map (colour; direction (2R/255 - 1, 2G/255 - 1), x right, y up) or a\n"
+                              ".npy array (rows, columns, 2) of directions u[i, j] at x = j / (columns - 1), y = i / (rows - 1);\n"
+                              "smoothed by a cubic B-spline of u u^T. Default: none")
+                   ->type_name("FILE")
+                   ->check(CLI::ExistingFile);
+}
+
+std::vector<std::pair<std::string, std::string>> SteerOptions::input_files() const {
+  if (image.empty()) return {};
+  return {{"--steer-image", image}};
 }
 
 dfvn::SteerSpec SteerOptions::spec(const std::string& noise, int dimension) const {
-  const bool given = options[0]->count() + options[1]->count() + options[2]->count() > 0;
+  int count = 0;
+  for (const CLI::Option* option : options) count += static_cast<int>(option->count());
+  const bool given = count > 0;
   dfvn::SteerSpec s;
   if (noise != "steerable") {
-    if (given) fail("--steer-dir, --steer-field and --steer-k steer --noise steerable, not --noise " + noise);
+    if (given)
+      fail("--steer-dir, --steer-field, --steer-k, --steer-quality and --steer-image steer --noise steerable, not --noise " + noise);
     return s;
   }
   s.k = k;
+  s.quality = quality;
   s.circular = field == "circular";
+  if (!image.empty()) {
+    try {
+      s.image = dfvn::read_steer_image(image);
+    } catch (const std::invalid_argument& e) {
+      fail(e.what());
+    }
+  }
   if (options[0]->count() > 0) {
     for (const std::string& part : CLI::detail::split(direction, ',')) {
       double value = 0.0;

@@ -44,17 +44,22 @@ CLI::Option* add_dimension_option(CLI::App& cmd, int& dimension, const std::stri
 // takes SteerOptions too).
 void add_noise_option(CLI::App& cmd, std::string& noise, bool steerable = false);
 
-// --steer-dir U, --steer-field constant|circular and --steer-k K: the direction field of --noise steerable
+// --steer-dir U, --steer-field constant|circular, --steer-k K, --steer-quality Q and --steer-image FILE: the
+// direction field of --noise steerable
 // (noise/steerable_noise.hpp). spec() fail()s with one line when one is given without --noise steerable, or
 // (with `dimension` > 0) when the spec does not fit the dimension.
 struct SteerOptions {
   std::string direction;
   std::string field = "constant";
   double k = dfvn::kDefaultSteerK;
-  CLI::Option* options[3] = {};
+  int quality = 0;
+  std::string image;
+  CLI::Option* options[5] = {};
 
   void add_to(CLI::App& cmd);
   dfvn::SteerSpec spec(const std::string& noise, int dimension) const;
+  // The file --steer-image reads, as (option, path) for dfvn::check_outputs.
+  std::vector<std::pair<std::string, std::string>> input_files() const;
 };
 // --field: which divergence-free field the noise makes, dfvn (the paper's) or curl (Bridson's curl noise).
 CLI::Option* add_field_kind_option(CLI::App& cmd, std::string& field, const std::string& consequences);

@@ -95,7 +95,8 @@ py::tuple field(const PointArray& points, std::uint64_t seed, double frequency, 
                 const py::object& stretch, const std::optional<double>& time, const std::optional<std::string>& lift,
                 double lift_ramp, const py::object& steer, double steer_k, int octaves, double octave_gain,
                 const std::vector<std::string>& amplitude, bool viscous, const std::vector<std::string>& bodies,
-                const std::vector<std::string>& vortices, const std::string& rotation) {
+                const std::vector<std::string>& vortices, const std::string& rotation, int steer_quality,
+                const std::optional<std::string>& steer_image) {
   const PointRows in = point_rows(points, kMinDimension, kMaxDimension);
   FieldQuery query;
   query.dimension = in.dimension;
@@ -117,8 +118,14 @@ py::tuple field(const PointArray& points, std::uint64_t seed, double frequency, 
     }
   }
   spec.k = steer_k;
-  if (query.field.noise != NoiseBasis::steerable && (spec.active() || steer_k != kDefaultSteerK))
-    throw py::value_error("steer and steer_k steer noise='steerable', not '" + noise + "'");
+  spec.quality = steer_quality;
+  // steer_image: a .png flow map or a .npy (rows, columns, 2) direction array, as --steer-image.
+  if (steer_image) {
+    if (!spec.direction.empty() || spec.circular) throw py::value_error("steer and steer_image are two direction fields: give one");
+    spec.image = read_steer_image(*steer_image);
+  }
+  if (query.field.noise != NoiseBasis::steerable && (spec.active() || steer_k != kDefaultSteerK || steer_quality != 0))
+    throw py::value_error("steer, steer_k, steer_quality and steer_image steer noise='steerable', not '" + noise + "'");
   if (query.field.noise == NoiseBasis::steerable) check_steer_spec(spec, in.dimension);
   query.threads = threads;
   py::array_t<double> velocity = new_array(in.rows, in.dimension);
@@ -176,6 +183,7 @@ void bind_field(py::module_& module) {
              "steer"_a = py::none(), "steer_k"_a = kDefaultSteerK, "octaves"_a = 1, "octave_gain"_a = kKolmogorovOctaveGain,
              "amplitude"_a = std::vector<std::string>{}, "viscous"_a = false, "bodies"_a = std::vector<std::string>{},
              "vortices"_a = std::vector<std::string>{}, "rotation"_a = std::string(to_string(kDefaultGradientRotation)),
+             "steer_quality"_a = 0, "steer_image"_a = py::none(),
              R"(The divergence-free field c(x) = cross(grad f_1, ..., grad f_{N-1}) (Eq. 8) at each point.
 
 points: (n, N) array, N = 2..8 (converted to float64 C order if it is not already).
@@ -198,7 +206,9 @@ stretch (default None): 'U:S' or (U, S), f_i(A x) with A = I + (S - 1) u u^T, u 
 lift (default None, 2D only): 'plane:SX,SY', 'bump:H,R[,CX,CY]' or 'npy:FILE', f(x) = F(x, h(x)) (`--lift`), with
 lift_ramp (default 0.0) the vertical ramp of the paper's Figure 9 (`--lift-ramp`).
 noise 'steerable' (seed 002, N = 2..4) takes steer: a direction U (N reals, any nonzero length) or
-'circular' (`--steer-dir`, `--steer-field circular`), and steer_k (default 0.5, `--steer-k`).
+'circular' (`--steer-dir`, `--steer-field circular`), and steer_k (default 0.5, `--steer-k`),
+steer_quality (default 0, `--steer-quality`: 0..N) and, in 2D, steer_image (default None: a .png flow
+map or a .npy (rows, columns, 2) direction array over the unit square, `--steer-image`) instead of steer.
 Bridson et al. 2007's toolbox, as `dfvn-sample field` takes it (docs/FIELDS.md): octaves (default 1:
 none) with octave_gain (default 2^(-1/3), Kolmogorov's), amplitude (default []: strings 'constant:A',
 'height:Z0,Z1', 'obstacles:D', multiplied), viscous (default False: no-slip walls and obstacles), bodies

@@ -121,8 +121,11 @@ Vec<N> curl_of(const std::array<Vec<N>, N - 1>& g, const Vec<N>& g3) {
 template <int N>
 std::shared_ptr<const NoiseFunctions<N>> field_noise(const FieldOptions& options, std::uint64_t seed, double time,
                                                      double lift_ramp = 0.0) {
-  if (options.noise == NoiseBasis::steerable)  // validate() refuses a transform beside it
-    return make_steerable_noise<N>(seed, options.phase, options.transform.steer);
+  if (options.noise == NoiseBasis::steerable) {  // validate() refuses a transform beside it
+    SteerSpec spec = options.transform.steer;
+    spec.image_frequency = options.frequency;  // an image covers the unit square of x
+    return make_steerable_noise<N>(seed, options.phase, spec);
+  }
   if (options.transform.rotation != GradientRotation::two_vector)  // validate(): simplex, no transform, no torus
     return make_rotating_simplex_noise<N>(seed, options.phase, options.transform.rotation);
   if (!options.transform.active())

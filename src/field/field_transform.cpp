@@ -10,6 +10,7 @@
 
 #include "dfvn/core/message_text.hpp"
 #include "dfvn/io/csv.hpp"
+#include "dfvn/io/png.hpp"
 #include "dfvn/io/point_reader.hpp"
 
 namespace dfvn {
@@ -220,6 +221,52 @@ void parse_stretch(std::string_view text, NoiseTransform& transform) {
   check.time.reset();
   check.lift = {};
   check.validate();
+}
+
+std::shared_ptr<const DirectionGrid> read_steer_image(const std::string& path) {
+  const std::string quoted = quote_for_message(path);
+  auto grid = std::make_shared<DirectionGrid>();
+  grid->source = path;
+  std::vector<std::array<double, 2>> directions;  // row-major, row 0 at y = 0
+  auto ends_with = [&](std::string_view suffix) {
+    return path.size() >= suffix.size() && path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+  };
+  try {
+    if (ends_with(".npy")) {
+      // Shape (rows, columns, 2): the point reader's (M, points, N) with N = 2.
+      const std::vector<PointTable> sets = read_point_sets(path, InputFormat::npy);
+      if (sets.front().dimension != 2 || sets.size() < 2)
+        throw InputError("expected a float array of shape (rows, columns, 2), rows and columns >= 2");
+      grid->rows = static_cast<int>(sets.size());
+      grid->columns = static_cast<int>(sets.front().rows());
+      for (const PointTable& row : sets)
+        for (std::size_t j = 0; j < row.rows(); ++j) directions.push_back({row.coordinates[2 * j], row.coordinates[2 * j + 1]});
+    } else if (ends_with(".png")) {
+      // A flow map: R and G hold the direction's x and y, 0..255 -> -1..1; image up is +y.
+      const RgbImage image = read_png_rgb(path);
+      grid->rows = image.height;
+      grid->columns = image.width;
+      for (int i = 0; i < image.height; ++i) {
+        const std::uint8_t* row = image.pixels.data() + static_cast<std::size_t>(image.height - 1 - i) * image.width * 3;
+        for (int j = 0; j < image.width; ++j)
+          directions.push_back({2.0 * row[3 * j] / 255.0 - 1.0, 2.0 * row[3 * j + 1] / 255.0 - 1.0});
+      }
+    } else {
+      throw InputError("expected a .png flow map or a .npy array of shape (rows, columns, 2)");
+    }
+  } catch (const InputError& e) {
+    throw std::invalid_argument(fmt::format("--steer-image {}: {}", quoted, e.what()));
+  }
+  if (grid->rows < 2 || grid->columns < 2)
+    throw std::invalid_argument(fmt::format("--steer-image {}: at least 2 x 2 pixels, got {} x {}", quoted, grid->rows,
+                                            grid->columns));
+  for (const auto& [ux, uy] : directions) {
+    const double norm = std::hypot(ux, uy);
+    // No direction (u = 0, or a pixel of the PNG's mid grey 127/128): the isotropic tensor I / 2.
+    if (!(norm > 1e-2)) grid->tensors.push_back({0.5, 0.0, 0.5});
+    else grid->tensors.push_back({ux * ux / (norm * norm), ux * uy / (norm * norm), uy * uy / (norm * norm)});
+  }
+  return grid;
 }
 
 LiftSpec parse_lift(std::string_view text) {

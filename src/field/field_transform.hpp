@@ -89,6 +89,12 @@ void parse_stretch(std::string_view text, NoiseTransform& transform);
 // with one line (for a file: its name and what is wrong with it, io/point_reader.hpp read_npy_matrix).
 LiftSpec parse_lift(std::string_view text);
 std::shared_ptr<const HeightField> make_height_field(const LiftSpec& spec);
+// --steer-image FILE: a 2D direction field over the unit square (noise/steerable_noise.hpp, DirectionGrid), from a
+// .png flow map (colour: u = (2 R / 255 - 1, 2 G / 255 - 1), x right and y up, row 0 the top at y = 1) or a .npy
+// float array of shape (rows, columns, 2) holding u at x = j / (columns - 1), y = i / (rows - 1) (numpy's
+// u[i, j]); a direction shorter than 1e-2 counts as none. Throws std::invalid_argument with one line naming the
+// file and what is wrong with it.
+std::shared_ptr<const DirectionGrid> read_steer_image(const std::string& path);
 
 // The N-1 functions the field reads for `transform`, at time `time` (the transform's own time is
 // ignored: the field asks for time 0 too, to measure an amplitude that does not depend on the time).

@@ -51,6 +51,8 @@ SHARED = {
     "--lift-ramp": ["the vertical ramp of the paper's figure 9"],
     "--steer-dir": ["with --noise steerable: the direction u the noise is elongated along"],
     "--steer-field": ["with --noise steerable: constant (--steer-dir) or circular"],
+    "--steer-quality": ["with --noise steerable: seed 002's quality q in 0..n"],
+    "--steer-image": ["with --noise steerable in 2d: steer along an image's direction field"],
     "--steer-k": ["with --noise steerable: the metric's eigenvalue k along u, in (0, 1]"],
     "--octaves": ["octaves k of the noise (bridson et al. 2007, section 2.2)", "1 is the field without"],
     "--octave-gain": ["with --octaves: the velocity ratio g from one octave to the next", "kolmogorov's 2^(-1/3)"],
