@@ -259,7 +259,8 @@ void TransformOptions::add_to(CLI::App& cmd) {
   lift_option = cmd.add_option("--lift", lift,
                  "2D only: lift the noise onto a surface z = h(x) (the paper's Section 5.5), f(x) = F(x, h(x)) with\n"
                  "F the first function of the 3D basis; still exactly divergence-free. plane:SX,SY (h = SX x + SY y)\n"
-                 "or bump:H,R[,CX,CY] (h = H (1 - r^2)^3 for r = |x - (CX,CY)| / R < 1, else 0; centre default 0,0)\n"
+                 "or bump:H,R[,CX,CY[,SX,SY]] (h = H (1 - r^2)^3 for r = |x - (CX,CY)| / R < 1, else 0; centre default\n"
+                 "0,0; on the plane SX x + SY y if given)\n"
                  "or npy:FILE (a 2D float .npy array h[i, j] at x = j / (columns - 1), y = i / (rows - 1) over the unit\n"
                  "square, interpolated by a cubic B-spline, so C2). Default: none")
       ->type_name("SPEC");

@@ -60,7 +60,7 @@ FlowOptions flow_options(int octaves, double octave_gain, const std::vector<std:
 }
 
 // stretch: None, 'U:S' as on the command line, or (U, S) with U a sequence of reals; time: None or a
-// real; lift: None or 'plane:SX,SY' / 'bump:H,R[,CX,CY]' / 'npy:FILE'; lift_ramp: Figure 9's vertical ramp. Bad
+// real; lift: None or 'plane:SX,SY' / 'bump:H,R[,CX,CY[,SX,SY]]' / 'npy:FILE'; lift_ramp: Figure 9's vertical ramp. Bad
 // values raise ValueError with the command line's message.
 NoiseTransform noise_transform(const py::object& stretch, const std::optional<double>& time,
                                const std::optional<std::string>& lift, double lift_ramp) {
@@ -203,7 +203,7 @@ independent functions of the basis; the same RMS |c| = 1 and frequency; domain '
 as `dfvn-sample field --obstacle`. threads: 0 = all cores (the result never depends on it).
 stretch (default None): 'U:S' or (U, S), f_i(A x) with A = I + (S - 1) u u^T, u = U / |U| (as
 `dfvn-sample field --stretch`); time (default None): the (N+1)D basis at (x, time), N <= 7 (`--time`);
-lift (default None, 2D only): 'plane:SX,SY', 'bump:H,R[,CX,CY]' or 'npy:FILE', f(x) = F(x, h(x)) (`--lift`), with
+lift (default None, 2D only): 'plane:SX,SY', 'bump:H,R[,CX,CY[,SX,SY]]' or 'npy:FILE', f(x) = F(x, h(x)) (`--lift`), with
 lift_ramp (default 0.0) the vertical ramp of the paper's Figure 9 (`--lift-ramp`).
 noise 'steerable' (seed 002, N = 2..4) takes steer: a direction U (N reals, any nonzero length) or
 'circular' (`--steer-dir`, `--steer-field circular`), and steer_k (default 0.5, `--steer-k`),

@@ -28,8 +28,9 @@ inline constexpr double kMaxStretch = 1e6;
 // - plane:SX,SY   h(x) = SX x_1 + SY x_2 (a constant slope; a lift onto it is the stretch
 //                 A = I + (sqrt(1 + |grad h|^2) - 1) n n^T along n = grad h / |grad h|, up to a rotation
 //                 of the noise: F is read at (x, grad h . x));
-// - bump:H,R[,CX,CY]  h(x) = H (1 - r^2)^3 for r = |x - (CX, CY)| / R < 1, else 0 (value, slope and
-//                 curvature 0 at r = 1, so C2; a polynomial in r^2, so smooth at the centre); R > 0.
+// - bump:H,R[,CX,CY[,SX,SY]]  h(x) = H (1 - r^2)^3 for r = |x - (CX, CY)| / R < 1, else 0 (value, slope and
+//                 curvature 0 at r = 1, so C2; a polynomial in r^2, so smooth at the centre); R > 0; with SX, SY
+//                 the bump sits on the plane SX x + SY y (the paper's Figure 9: a slope with a hill in its middle).
 // - npy:FILE      a 2D float64/float32 array (rows, columns) from a .npy file, each side 2..65536, every
 //                 element finite, heights in length units. Element (i, j) is the height at x = j / (columns - 1),
 //                 y = i / (rows - 1): the columns run along x and the rows along y over the unit square [0, 1]^2,

@@ -47,7 +47,7 @@ SHARED = {
     "--phase": ["noise phase alpha in radians", "0 is the field without a phase, bit for bit"],
     "--stretch": ["stretch the noise along a direction, u:s", "f_i(a x) with a = i + (s - 1) u u^t"],
     "--time": ["time as an extra noise dimension", "in the units of x"],
-    "--lift": ["lift the noise onto a surface z = h(x)", "plane:sx,sy", "bump:h,r[,cx,cy]"],
+    "--lift": ["lift the noise onto a surface z = h(x)", "plane:sx,sy", "bump:h,r[,cx,cy[,sx,sy]]"],
     "--lift-ramp": ["the vertical ramp of the paper's figure 9"],
     "--steer-dir": ["with --noise steerable: the direction u the noise is elongated along"],
     "--steer-field": ["with --noise steerable: constant (--steer-dir) or circular"],
