@@ -29,6 +29,8 @@ struct FieldCommand : Subcommand {
   double phase = 0.0;
   TransformOptions transform;
   SteerOptions steer;
+  BridsonOptions bridson;
+  std::string rotation{dfvn::to_string(dfvn::kDefaultGradientRotation)};
   std::string noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
   std::string field_kind{dfvn::to_string(dfvn::kDefaultFieldKind)};
   std::string domain = "free";
@@ -63,6 +65,7 @@ struct FieldCommand : Subcommand {
     add_field_kind_option(*cmd, field_kind,
                           "With curl: --domain free or torus, or cube or ball\nwith --bound ramp; the columns f1..f{N-1} are then psi_1..psi_{N-1}");
     add_phase_option(*cmd, phase);
+    add_rotation_option(*cmd, rotation);
     transform.add_to(*cmd);
     cmd->add_option("--domain", domain,
                     "free (R^N), torus ([0,1)^N: the basis's periodic form, period 1 along every axis, at about F\n"
@@ -85,6 +88,7 @@ struct FieldCommand : Subcommand {
                     "Bridson's psi_c = alpha psi + (1 - alpha) n (n . psi) for 3D curl noise. Each obstacle with its\n"
                     "zone must lie inside the domain clear of the wall's zone and of the other obstacles' zones")
         ->take_all();
+    bridson.add_to(*cmd);
     CLI::Option* input_option =
         cmd->add_option("--input", input, "Point file to read, CSV or whitespace-separated (default: standard input)")
             ->check(CLI::ExistingFile);
@@ -120,17 +124,20 @@ struct FieldCommand : Subcommand {
     o.phase = phase;
     o.transform = transform.transform();
     o.transform.steer = steer.spec(noise, dimension);
+    o.transform.rotation = dfvn::parse_gradient_rotation(rotation);
     if (domain == "cube" || domain == "ball") {
       o.constraint = domain == "cube" ? dfvn::FieldConstraint::inside_cube : dfvn::FieldConstraint::inside_ball;
       o.transition_width = boundary_width;
       o.bound = dfvn::parse_bound(bound);
       for (const std::string& spec : obstacles) o.obstacles.push_back(dfvn::parse_obstacle(spec));
     }
+    o.flow = bridson.flow();
     return o;
   }
 
   void run() {
     std::vector<std::pair<std::string, std::string>> inputs = transform.input_files();
+    for (const auto& file : steer.input_files()) inputs.push_back(file);
     inputs.emplace_back("--input", input.empty() ? std::string("-") : input);
     dfvn::check_outputs({{"--output", output}}, {}, inputs);
     if (field_kind == "curl" && (domain == "cube" || domain == "ball") && bound != "ramp")

@@ -145,17 +145,46 @@ void SteerOptions::add_to(CLI::App& cmd) {
                               "With --noise steerable: the metric's eigenvalue K along u, in (0, 1] (below 0.99993 in 4D);\n"
                               "across u it is (4 - K) / (N - 1) - 1e-4, so smaller K elongates more")
                    ->capture_default_str();
+  options[3] = cmd.add_option("--steer-quality", quality,
+                              "With --noise steerable: seed 002's quality Q in 0..N, the corners -Q..Q+1 along each axis\n"
+                              "((2Q+2)^N per function), the eigenvalue along u K / (Q + 1): larger Q elongates more and\n"
+                              "costs more; 0 is the single-order noise")
+                   ->capture_default_str()
+                   ->check(CLI::Range(0, dfvn::kMaxSteerableDimension));
+  options[4] = cmd.add_option("--steer-image", image,
+                              "With --noise steerable in 2D: steer along an image's direction field over the unit square\n"
+                              "(Figure 3): a .png flow map (colour; direction (2R/255 - 1, 2G/255 - 1), x right, y up) or a\n"
+                              ".npy array (rows, columns, 2) of directions u[i, j] at x = j / (columns - 1), y = i / (rows - 1);\n"
+                              "smoothed by a cubic B-spline of u u^T. Default: none")
+                   ->type_name("FILE")
+                   ->check(CLI::ExistingFile);
+}
+
+std::vector<std::pair<std::string, std::string>> SteerOptions::input_files() const {
+  if (image.empty()) return {};
+  return {{"--steer-image", image}};
 }
 
 dfvn::SteerSpec SteerOptions::spec(const std::string& noise, int dimension) const {
-  const bool given = options[0]->count() + options[1]->count() + options[2]->count() > 0;
+  int count = 0;
+  for (const CLI::Option* option : options) count += static_cast<int>(option->count());
+  const bool given = count > 0;
   dfvn::SteerSpec s;
   if (noise != "steerable") {
-    if (given) fail("--steer-dir, --steer-field and --steer-k steer --noise steerable, not --noise " + noise);
+    if (given)
+      fail("--steer-dir, --steer-field, --steer-k, --steer-quality and --steer-image steer --noise steerable, not --noise " + noise);
     return s;
   }
   s.k = k;
+  s.quality = quality;
   s.circular = field == "circular";
+  if (!image.empty()) {
+    try {
+      s.image = dfvn::read_steer_image(image);
+    } catch (const std::invalid_argument& e) {
+      fail(e.what());
+    }
+  }
   if (options[0]->count() > 0) {
     for (const std::string& part : CLI::detail::split(direction, ',')) {
       double value = 0.0;
@@ -230,7 +259,8 @@ void TransformOptions::add_to(CLI::App& cmd) {
   lift_option = cmd.add_option("--lift", lift,
                  "2D only: lift the noise onto a surface z = h(x) (the paper's Section 5.5), f(x) = F(x, h(x)) with\n"
                  "F the first function of the 3D basis; still exactly divergence-free. plane:SX,SY (h = SX x + SY y)\n"
-                 "or bump:H,R[,CX,CY] (h = H (1 - r^2)^3 for r = |x - (CX,CY)| / R < 1, else 0; centre default 0,0)\n"
+                 "or bump:H,R[,CX,CY[,SX,SY]] (h = H (1 - r^2)^3 for r = |x - (CX,CY)| / R < 1, else 0; centre default\n"
+                 "0,0; on the plane SX x + SY y if given)\n"
                  "or npy:FILE (a 2D float .npy array h[i, j] at x = j / (columns - 1), y = i / (rows - 1) over the unit\n"
                  "square, interpolated by a cubic B-spline, so C2). Default: none")
       ->type_name("SPEC");
@@ -264,6 +294,75 @@ std::vector<std::pair<std::string, std::string>> TransformOptions::input_files()
   constexpr std::string_view kNpyPrefix = "npy:";
   if (lift.starts_with(kNpyPrefix)) return {{"--lift npy:", lift.substr(kNpyPrefix.size())}};
   return {};
+}
+
+void BridsonOptions::add_to(CLI::App& cmd) {
+  cmd.add_option("--octaves", octaves,
+                 fmt::format("Octaves K of the noise (Bridson et al. 2007, Section 2.2), in [1, {}]: octave o is an\n"
+                             "independently seeded instance at 2^o times --frequency, with its own boundary width w / 2^o;\n"
+                             "weights g^o / sqrt(sum g^2k) keep RMS |c| = 1 (for --field curl each octave's energy is\n"
+                             "its weight squared; for dfvn the weights apply to every f_i). 1 is the field without\n"
+                             "octaves, bit for bit",
+                             dfvn::kMaxOctaves))
+      ->capture_default_str()
+      ->check(CLI::Range(1, dfvn::kMaxOctaves));
+  cmd.add_option("--octave-gain", octave_gain,
+                 "With --octaves: the velocity ratio g from one octave to the next (half the length scale), any\n"
+                 "finite g > 0; default Kolmogorov's 2^(-1/3) = 0.7937 (energy spectrum k^(-5/3))")
+      ->capture_default_str()
+      ->check(kPositiveFinite);
+  cmd.add_option("--amplitude", amplitude,
+                 "Modulate the potential by A(x) (Bridson Section 2.3; for dfvn f_1, in 3D the potential f_1\n"
+                 "grad f_2): constant:A, height:Z0,Z1 (the C2 smoothstep from 0 at x_N = Z0 to 1 at Z1) or\n"
+                 "obstacles:D (1 on every --obstacle and --body, 0 once all are D away); repeatable, the\n"
+                 "product; still exactly divergence-free. Default: none (A = 1)")
+      ->type_name("SHAPE")
+      ->take_all();
+  cmd.add_flag("--viscous", viscous,
+               "With --domain cube or ball: no-slip solids (Bridson Section 2.4): the potential times the C2\n"
+               "smoothstep S(d / w) of the distance to the wall and to every obstacle and body, so c = 0 on\n"
+               "them (a --body's surface moves with it). Default: off (c tangent to them)");
+  cmd.add_option("--body", bodies,
+                 "With --field curl in 3D and --domain cube or ball: a moving rigid sphere\n"
+                 "sphere:CX,CY,CZ,R,VX,VY,VZ,WX,WY,WZ (centre, radius, velocity V, angular velocity W; Bridson\n"
+                 "Eq. 6 with V x r / 2, blended to 0 at 2R from the centre): on its surface c . n equals\n"
+                 "(V + W x (x - centre)) . n. Repeatable; default none")
+      ->type_name("SPEC")
+      ->take_all();
+  cmd.add_option("--vortex", vortices,
+                 "With --field curl in 3D: a vortex (Bridson Eqs. 7-8, fall-off 1 - S(d / R) to 0 at the core\n"
+                 "radius R): particle:CX,CY,CZ,WX,WY,WZ,R (rotation at angular velocity W about the centre) or\n"
+                 "ring:CX,CY,CZ,NX,NY,NZ,RR,W,R (a smoke ring of radius RR normal to N, angular velocity W about\n"
+                 "its core; W > 0 pushes through the ring along N). Repeatable; default none")
+      ->type_name("SPEC")
+      ->take_all();
+}
+
+dfvn::FlowOptions BridsonOptions::flow() const {
+  dfvn::FlowOptions f;
+  f.octaves = octaves;
+  f.octave_gain = octave_gain;
+  f.viscous = viscous;
+  try {
+    for (const std::string& spec : amplitude) f.amplitude.push_back(dfvn::parse_amplitude(spec));
+    for (const std::string& spec : bodies) f.bodies.push_back(dfvn::parse_body(spec));
+    for (const std::string& spec : vortices) f.vortices.push_back(dfvn::parse_vortex(spec));
+    f.validate();
+  } catch (const std::invalid_argument& e) {
+    fail(e.what());
+  }
+  return f;
+}
+
+void add_rotation_option(CLI::App& cmd, std::string& rotation) {
+  cmd.add_option("--rotation", rotation,
+                 "How --noise simplex's gradients turn with --phase in 3D (McEwan & Gustavson, seed 001): two-vector\n"
+                 "(p cos a + q sin a, q a second hashed gradient made orthogonal to p: every dimension; phase 0 the\n"
+                 "basis's own noise), fast (one Fibonacci-sphere hash: axis and offset, no phase gives a static set)\n"
+                 "or well-behaved (p on the Fibonacci sphere, q by the rotation taking z to p: phase 0 is the\n"
+                 "Fibonacci gradients' noise bit for bit)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"two-vector", "fast", "well-behaved"}));
 }
 
 void refuse_options(CLI::App& cmd, const std::vector<std::pair<std::string, std::string>>& names_and_messages) {

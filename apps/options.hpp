@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "dfvn/core/progress.hpp"
+#include "dfvn/field/bridson_flow.hpp"
 #include "dfvn/field/field_transform.hpp"
 
 namespace dfvn_cli {
@@ -43,17 +44,22 @@ CLI::Option* add_dimension_option(CLI::App& cmd, int& dimension, const std::stri
 // takes SteerOptions too).
 void add_noise_option(CLI::App& cmd, std::string& noise, bool steerable = false);
 
-// --steer-dir U, --steer-field constant|circular and --steer-k K: the direction field of --noise steerable
+// --steer-dir U, --steer-field constant|circular, --steer-k K, --steer-quality Q and --steer-image FILE: the
+// direction field of --noise steerable
 // (noise/steerable_noise.hpp). spec() fail()s with one line when one is given without --noise steerable, or
 // (with `dimension` > 0) when the spec does not fit the dimension.
 struct SteerOptions {
   std::string direction;
   std::string field = "constant";
   double k = dfvn::kDefaultSteerK;
-  CLI::Option* options[3] = {};
+  int quality = 0;
+  std::string image;
+  CLI::Option* options[5] = {};
 
   void add_to(CLI::App& cmd);
   dfvn::SteerSpec spec(const std::string& noise, int dimension) const;
+  // The file --steer-image reads, as (option, path) for dfvn::check_outputs.
+  std::vector<std::pair<std::string, std::string>> input_files() const;
 };
 // --field: which divergence-free field the noise makes, dfvn (the paper's) or curl (Bridson's curl noise).
 CLI::Option* add_field_kind_option(CLI::App& cmd, std::string& field, const std::string& consequences);
@@ -77,6 +83,24 @@ struct TransformOptions {
   // The files these options read, as (option, path) for dfvn::check_outputs: --lift npy:FILE's FILE.
   std::vector<std::pair<std::string, std::string>> input_files() const;
 };
+
+// Bridson et al. 2007's toolbox on the field (field/bridson_flow.hpp): --octaves K, --octave-gain G,
+// --amplitude SHAPE (repeatable), --viscous, --body sphere:... (repeatable), --vortex particle:...|ring:...
+// (repeatable). flow() parses them (fail() with one line on a malformed spec or value).
+struct BridsonOptions {
+  int octaves = 1;
+  double octave_gain = dfvn::kKolmogorovOctaveGain;
+  std::vector<std::string> amplitude;
+  bool viscous = false;
+  std::vector<std::string> bodies;
+  std::vector<std::string> vortices;
+
+  void add_to(CLI::App& cmd);
+  dfvn::FlowOptions flow() const;
+};
+
+// --rotation: how simplex noise's gradients turn with --phase (noise/rotating_gradients.hpp).
+void add_rotation_option(CLI::App& cmd, std::string& rotation);
 
 // Names that no longer mean what they meant here (issue 24's one vocabulary), each with the line that
 // names the option to use instead: hidden from the help, and giving one (with a value or without)

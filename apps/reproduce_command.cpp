@@ -10,6 +10,7 @@
 #include "dfvn/io/atomic_file.hpp"
 #include "dfvn/io/markdown_text.hpp"
 #include "dfvn/plot/gnuplot.hpp"
+#include "dfvn/reproduce/bridson.hpp"
 #include "dfvn/reproduce/cnj_study.hpp"
 #include "dfvn/reproduce/constructions.hpp"
 #include "dfvn/reproduce/figure8.hpp"
@@ -52,7 +53,12 @@ struct ReproduceCommand : Subcommand {
   dfvn::Figure7Config figure7;
   dfvn::Figure9Config figure9, figure10{.ramp_figure = false, .out_dir = "out/figure10"};
   std::string noise6{dfvn::to_string(dfvn::kDefaultNoiseBasis)}, noise7 = noise6, noise9 = noise6, noise10 = noise6;
-  std::vector<double> slope9 = {1.0, 0.5}, slope10 = {1.0, 0.5};
+  // figure9: the paper's surface, a slope along x (its particles move top to bottom) with a hill in the middle;
+  // figure10: the plane alone.
+  std::vector<double> slope9 = {1.0, 0.0}, slope10 = {1.0, 0.5}, bump9 = {0.6, 0.25};
+  // bridson (reproduce/bridson.hpp)
+  CommonOptions common_bridson;
+  dfvn::BridsonConfig bridson;
 
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand("reproduce", "Regenerate the paper's tables and figures, ours beside the paper's.");
@@ -159,10 +165,59 @@ struct ReproduceCommand : Subcommand {
     add_figure8(cmd);
     add_constructions(cmd);
     add_surface_figures(cmd);
+    add_bridson(cmd);
     // After the subcommands, which would otherwise inherit it.
     cmd->footer("Subcommands: table1, table2, cnj-study, integration, figure6, figure7, figure8, figure9,\n"
-                "figure10, constructions; each has --help ('dfvn-sample reproduce table1\n"
+                "figure10, constructions, bridson; each has --help ('dfvn-sample reproduce table1\n"
                 "--help'), and 'dfvn-sample --help-all' prints them all.");
+  }
+
+  void add_bridson(CLI::App* cmd) {
+    CLI::App* b = cmd->add_subcommand(
+        "bridson",
+        "Bridson et al. 2007's Figure 2 (seed 003) with --octaves, --amplitude, --body, --vortex and --viscous: a wake\n"
+        "behind a moving sphere and a vortex ring pushing fluid past a sphere before turbulent mixing, 3D curl noise in\n"
+        "the unit cube, traced particles drawn from the side; and the checks from the field itself (divergence, c . n on\n"
+        "the walls and the sphere, the moving body's normal velocity, no-slip with --viscous, energy per octave). Writes\n"
+        "DIR/bridson.md, DIR/bridson_checks.csv, DIR/bridson_octaves.csv, DIR/wake.png, DIR/ring.png, DIR/wake_traces.csv\n"
+        "and DIR/ring_traces.csv; prints bridson.md as plain text. The defaults take well under a minute.");
+    b->add_option("--out", bridson.out_dir, kOutDirHelp)->capture_default_str();
+    b->add_option("--frequency", bridson.frequency, "Noise frequency F of octave 0 in cycles per unit length, at most 64")
+        ->capture_default_str()
+        ->check(kNoiseFrequency);
+    b->add_option("--octaves", bridson.octaves,
+                  "Octaves K of the noise (Bridson et al. 2007, Section 2.2), in [1, 10], as field --octaves; 1 is the field\n"
+                  "without octaves")
+        ->capture_default_str();
+    b->add_option("--octave-gain", bridson.octave_gain,
+                  "With --octaves: the velocity ratio g from one octave to the next, any finite g > 0; default\n"
+                  "Kolmogorov's 2^(-1/3)")
+        ->capture_default_str();
+    b->add_option("--boundary-width", bridson.boundary_width,
+                  "The solids' transition width in length units (octave o: W / 2^o), in (0, 0.07]")
+        ->capture_default_str();
+    b->add_option("--grid", bridson.grid, "Lattice points per axis K of each scene's start lattice (K x K particles)")
+        ->capture_default_str();
+    b->add_option("--trace-steps", bridson.steps, "RK4 steps per particle trace (no reprojection: curl noise has none)")
+        ->capture_default_str();
+    b->add_option("--image", bridson.image, "Side of the PNG in pixels")->capture_default_str();
+    b->add_option("--check-points", bridson.check_points,
+                  "Random points of each divergence check and of each checked surface (the octaves' energies: 4x)")
+        ->capture_default_str();
+    progress.add_to(*b);
+    add_common_options(*b, common_bridson);
+    b->callback([this] { run_bridson(); });
+  }
+
+  void run_bridson() {
+    bridson.seed = common_bridson.seed;
+    bridson.threads = common_bridson.threads;
+    bridson.validate();
+    dfvn::check_outputs(files_in(bridson.out_dir, dfvn::bridson_output_files()), {bridson.out_dir});
+    dfvn::ProgressReporter* reporter = progress.make(dfvn::bridson_stage_weights(bridson));
+    const auto result = dfvn::run_bridson(bridson, reporter->callback());
+    reporter->complete();
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_bridson(result)).c_str(), stdout);
   }
 
   void run_cnj_study() {
@@ -346,8 +401,10 @@ struct ReproduceCommand : Subcommand {
     CLI::App* f7 = cmd->add_subcommand(
         "figure7",
         "Figure 7 (Section 5.4): a ring pattern in the unit square warped along 2D DFVN bounded by the disc of radius 1/2\n"
-        "(Eq. 13). Writes DIR/figure7.csv (the samples that leave the disc, the change outside it), DIR/figure7_profile.csv\n"
-        "(the radial profile), DIR/figure7.md, DIR/source.png and DIR/warped.png; prints figure7.md as plain text.");
+        "(Eq. 13), its 3D half (the ball of radius 1/2, central slices) and the paper's own construction beside Eq. 13.\n"
+        "Writes DIR/figure7.csv (the samples that leave the disc, the change outside it), DIR/figure7_profile.csv (the\n"
+        "radial profile), DIR/figure7.md, DIR/source.png, DIR/warped.png, DIR/warped_paper.png, DIR/slices_3d.png and\n"
+        "DIR/figure7_constructions_3d.csv; prints figure7.md as plain text.");
     f7->add_option("--out", figure7.out_dir, kOutDirHelp)->capture_default_str();
     f7->add_option("--width", figure7.width, "Image width in pixels of the unit square (square image)")->capture_default_str();
     f7->add_option("--trace-time", figure7.time, "Trace time t of every pixel, in (0, 100] (RMS |c| = 1: unit lengths)")
@@ -363,6 +420,9 @@ struct ReproduceCommand : Subcommand {
     f7->add_option("--rings", figure7.rings, "Rings of the pattern 0.5 + 0.5 cos(2 pi K r / 0.5) inside the disc")
         ->capture_default_str();
     f7->add_option("--bins", figure7.bins, "Radial profile bins over r in [0, sqrt(2)/2]")->capture_default_str();
+    f7->add_option("--width-3d", figure7.width3d,
+                   "The 3D half: each central slice of the unit cube (through the ball) in pixels, square")
+        ->capture_default_str();
     add_noise_option(*f7, noise7);
     progress.add_to(*f7);
     add_common_options(*f7, common7);
@@ -378,7 +438,8 @@ struct ReproduceCommand : Subcommand {
     CLI::App* f = cmd->add_subcommand(
         config.name(),
         fmt::format("{} (Section 5.5): particle traces over the sloped surface h = SX x + SY y (the 2D field lifted onto\n"
-                    "it, --lift plane:SX,SY), {} the vertical ramp (--lift-ramp); the displacement covariance's\n"
+                    "it, --lift plane:SX,SY; figure9 with a hill in the middle, --bump), {} the vertical ramp (--lift-ramp);\n"
+                    "the displacement covariance's\n"
                     "principal direction against the slope direction. Writes DIR/{}.csv, DIR/{}_traces.csv, DIR/{}.md and\n"
                     "DIR/{}.png; prints {}.md as plain text.",
                     ramp ? "Figure 9" : "Figure 10", ramp ? "with" : "without", config.name(), config.name(),
@@ -394,6 +455,14 @@ struct ReproduceCommand : Subcommand {
                     "F(x, z) + BETA z adds BETA perp(grad h) to c, in RMS-speed units")
           ->capture_default_str()
           ->type_name("BETA");
+    if (ramp)
+      f->add_option("--bump", bump9,
+                    "The hill H,R on the slope, the paper's surface with its central vortex: h = SX x + SY y +\n"
+                    "H (1 - r^2 / R^2)^3 within R of the square's centre (--lift bump:H,R,0.5,0.5,SX,SY); H = 0: the\n"
+                    "plane alone")
+          ->delimiter(',')
+          ->expected(2)
+          ->capture_default_str();
     f->add_option("--grid", config.grid, "Lattice points per axis K of the start lattice (cell centres of the unit square)")
         ->capture_default_str();
     f->add_option("--trace-time", config.time, "Trace time t of every particle, in (0, 100] (RMS |c| = 1: unit lengths)")
@@ -441,6 +510,7 @@ struct ReproduceCommand : Subcommand {
                         const CommonOptions& common) {
     config.slope_x = slope.at(0);
     config.slope_y = slope.at(1);
+    if (config.ramp_figure) config.bump_height = bump9.at(0), config.bump_radius = bump9.at(1);
     config.noise = dfvn::parse_noise_basis(noise);
     config.seed = common.seed;
     config.threads = common.threads;

@@ -68,6 +68,8 @@ struct SampleCommand : Subcommand {
   CLI::Option* format_option = nullptr;
   TransformOptions transform;
   SteerOptions steer;
+  BridsonOptions bridson;
+  std::string rotation{dfvn::to_string(dfvn::kDefaultGradientRotation)};
 
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
@@ -174,7 +176,9 @@ struct SampleCommand : Subcommand {
         ->capture_default_str()
         ->check(CLI::IsMember({"none", "newton", "gauss-newton"}));
     add_phase_option(*cmd, config.cnj.phase);
+    add_rotation_option(*cmd, rotation);
     transform.add_to(*cmd);
+    bridson.add_to(*cmd);
     domain_option = cmd->add_option("--domain", domain,
                                     "Where every method's points live and are measured: torus ([0,1)^N with opposite faces\n"
                                     "identified: minimum-image distances; CNJ along a periodic field with wrapped traces; Poisson\n"
@@ -301,6 +305,8 @@ struct SampleCommand : Subcommand {
     }
     config.cnj.transform = transform.transform();
     config.cnj.transform.steer = steer.spec(noise, config.dimension);
+    config.cnj.flow = bridson.flow();
+    config.cnj.transform.rotation = dfvn::parse_gradient_rotation(rotation);
     if (config.cnj.transform.active())
       dfvn::check_transform_available(config.cnj.transform, config.dimension, config.cnj.domain == dfvn::DomainKind::torus);
     config.compute_statistics = !no_stats;

@@ -55,6 +55,7 @@ set(DFVN_PUBLIC_HEADERS
     field/cross_product.hpp
     field/dfvn_field.hpp
     field/obstacles.hpp
+    field/bridson_flow.hpp
     field/diagnose.hpp
     field/evaluate_points.hpp
     field/field_transform.hpp
@@ -73,6 +74,7 @@ set(DFVN_PUBLIC_HEADERS
     noise/noise_functions.hpp
     noise/noise_transforms.hpp
     noise/simplex_noise.hpp
+    noise/rotating_gradients.hpp
     noise/simplex_separate.hpp
     noise/steerable_noise.hpp
     noise/turning_bands.hpp

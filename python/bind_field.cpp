@@ -44,8 +44,23 @@ FieldOptions field_options(double frequency, const std::string& noise, double ph
   return o;
 }
 
+// Bridson's toolbox (field/bridson_flow.hpp) from the keywords, as the command line's --octaves, --octave-gain,
+// --amplitude, --viscous, --body and --vortex take them; bad values raise ValueError with the same message.
+FlowOptions flow_options(int octaves, double octave_gain, const std::vector<std::string>& amplitude, bool viscous,
+                         const std::vector<std::string>& bodies, const std::vector<std::string>& vortices) {
+  FlowOptions f;
+  f.octaves = octaves;
+  f.octave_gain = octave_gain;
+  f.viscous = viscous;
+  for (const std::string& spec : amplitude) f.amplitude.push_back(parse_amplitude(spec));
+  for (const std::string& spec : bodies) f.bodies.push_back(parse_body(spec));
+  for (const std::string& spec : vortices) f.vortices.push_back(parse_vortex(spec));
+  f.validate();
+  return f;
+}
+
 // stretch: None, 'U:S' as on the command line, or (U, S) with U a sequence of reals; time: None or a
-// real; lift: None or 'plane:SX,SY' / 'bump:H,R[,CX,CY]' / 'npy:FILE'; lift_ramp: Figure 9's vertical ramp. Bad
+// real; lift: None or 'plane:SX,SY' / 'bump:H,R[,CX,CY[,SX,SY]]' / 'npy:FILE'; lift_ramp: Figure 9's vertical ramp. Bad
 // values raise ValueError with the command line's message.
 NoiseTransform noise_transform(const py::object& stretch, const std::optional<double>& time,
                                const std::optional<std::string>& lift, double lift_ramp) {
@@ -78,13 +93,18 @@ py::tuple field(const PointArray& points, std::uint64_t seed, double frequency, 
                 const std::optional<double>& boundary_width, const std::string& field_kind,
                 const std::vector<std::string>& obstacles, int threads,
                 const py::object& stretch, const std::optional<double>& time, const std::optional<std::string>& lift,
-                double lift_ramp, const py::object& steer, double steer_k) {
+                double lift_ramp, const py::object& steer, double steer_k, int octaves, double octave_gain,
+                const std::vector<std::string>& amplitude, bool viscous, const std::vector<std::string>& bodies,
+                const std::vector<std::string>& vortices, const std::string& rotation, int steer_quality,
+                const std::optional<std::string>& steer_image) {
   const PointRows in = point_rows(points, kMinDimension, kMaxDimension);
   FieldQuery query;
   query.dimension = in.dimension;
   query.seed = seed;
   query.field = field_options(frequency, noise, phase, domain, bound, boundary_width, field_kind, obstacles,
                               noise_transform(stretch, time, lift, lift_ramp));
+  query.field.flow = flow_options(octaves, octave_gain, amplitude, viscous, bodies, vortices);
+  query.field.transform.rotation = parse_gradient_rotation(rotation);
   // steer: None, 'circular' or a sequence of N reals (the direction U), with noise='steerable'.
   SteerSpec& spec = query.field.transform.steer;
   if (py::isinstance<py::str>(steer)) {
@@ -98,8 +118,14 @@ py::tuple field(const PointArray& points, std::uint64_t seed, double frequency, 
     }
   }
   spec.k = steer_k;
-  if (query.field.noise != NoiseBasis::steerable && (spec.active() || steer_k != kDefaultSteerK))
-    throw py::value_error("steer and steer_k steer noise='steerable', not '" + noise + "'");
+  spec.quality = steer_quality;
+  // steer_image: a .png flow map or a .npy (rows, columns, 2) direction array, as --steer-image.
+  if (steer_image) {
+    if (!spec.direction.empty() || spec.circular) throw py::value_error("steer and steer_image are two direction fields: give one");
+    spec.image = read_steer_image(*steer_image);
+  }
+  if (query.field.noise != NoiseBasis::steerable && (spec.active() || steer_k != kDefaultSteerK || steer_quality != 0))
+    throw py::value_error("steer, steer_k, steer_quality and steer_image steer noise='steerable', not '" + noise + "'");
   if (query.field.noise == NoiseBasis::steerable) check_steer_spec(spec, in.dimension);
   query.threads = threads;
   py::array_t<double> velocity = new_array(in.rows, in.dimension);
@@ -119,13 +145,16 @@ py::array_t<double> trace(const PointArray& points, double time, std::uint64_t s
                           const std::optional<std::string>& bound, const std::optional<double>& boundary_width,
                           const std::string& field_kind, const std::vector<std::string>& obstacles, int threads,
                           const py::object& stretch, const std::optional<double>& noise_time,
-                          const std::optional<std::string>& lift, double lift_ramp) {
+                          const std::optional<std::string>& lift, double lift_ramp, int octaves, double octave_gain,
+                          const std::vector<std::string>& amplitude, bool viscous, const std::vector<std::string>& bodies,
+                          const std::vector<std::string>& vortices) {
   const PointRows in = point_rows(points, kMinDimension, kMaxDimension);
   TracePointsQuery query;
   query.dimension = in.dimension;
   query.seed = seed;
   query.field = field_options(frequency, noise, phase, domain, bound, boundary_width, field_kind, obstacles,
                               noise_transform(stretch, noise_time, lift, lift_ramp));
+  query.field.flow = flow_options(octaves, octave_gain, amplitude, viscous, bodies, vortices);
   query.trace.integrator = parse_integrator(integrator);
   // Not given: gauss-newton, or none for curl noise, which has no reprojection (the tracer refuses one).
   query.trace.reprojection = parse_reprojection(
@@ -151,7 +180,10 @@ void bind_field(py::module_& module) {
              "bound"_a = py::none(), "boundary_width"_a = py::none(),
              "field"_a = std::string(to_string(kDefaultFieldKind)), "obstacles"_a = std::vector<std::string>{}, "threads"_a = 0,
              "stretch"_a = py::none(), "time"_a = py::none(), "lift"_a = py::none(), "lift_ramp"_a = 0.0,
-             "steer"_a = py::none(), "steer_k"_a = kDefaultSteerK,
+             "steer"_a = py::none(), "steer_k"_a = kDefaultSteerK, "octaves"_a = 1, "octave_gain"_a = kKolmogorovOctaveGain,
+             "amplitude"_a = std::vector<std::string>{}, "viscous"_a = false, "bodies"_a = std::vector<std::string>{},
+             "vortices"_a = std::vector<std::string>{}, "rotation"_a = std::string(to_string(kDefaultGradientRotation)),
+             "steer_quality"_a = 0, "steer_image"_a = py::none(),
              R"(The divergence-free field c(x) = cross(grad f_1, ..., grad f_{N-1}) (Eq. 8) at each point.
 
 points: (n, N) array, N = 2..8 (converted to float64 C order if it is not already).
@@ -171,10 +203,19 @@ independent functions of the basis; the same RMS |c| = 1 and frequency; domain '
 as `dfvn-sample field --obstacle`. threads: 0 = all cores (the result never depends on it).
 stretch (default None): 'U:S' or (U, S), f_i(A x) with A = I + (S - 1) u u^T, u = U / |U| (as
 `dfvn-sample field --stretch`); time (default None): the (N+1)D basis at (x, time), N <= 7 (`--time`);
-lift (default None, 2D only): 'plane:SX,SY', 'bump:H,R[,CX,CY]' or 'npy:FILE', f(x) = F(x, h(x)) (`--lift`), with
+lift (default None, 2D only): 'plane:SX,SY', 'bump:H,R[,CX,CY[,SX,SY]]' or 'npy:FILE', f(x) = F(x, h(x)) (`--lift`), with
 lift_ramp (default 0.0) the vertical ramp of the paper's Figure 9 (`--lift-ramp`).
 noise 'steerable' (seed 002, N = 2..4) takes steer: a direction U (N reals, any nonzero length) or
-'circular' (`--steer-dir`, `--steer-field circular`), and steer_k (default 0.5, `--steer-k`).
+'circular' (`--steer-dir`, `--steer-field circular`), and steer_k (default 0.5, `--steer-k`),
+steer_quality (default 0, `--steer-quality`: 0..N) and, in 2D, steer_image (default None: a .png flow
+map or a .npy (rows, columns, 2) direction array over the unit square, `--steer-image`) instead of steer.
+Bridson et al. 2007's toolbox, as `dfvn-sample field` takes it (docs/FIELDS.md): octaves (default 1:
+none) with octave_gain (default 2^(-1/3), Kolmogorov's), amplitude (default []: strings 'constant:A',
+'height:Z0,Z1', 'obstacles:D', multiplied), viscous (default False: no-slip walls and obstacles), bodies
+(default []: 'sphere:CX,CY,CZ,R,VX,VY,VZ,WX,WY,WZ', field='curl' in 3D) and vortices (default []:
+'particle:CX,CY,CZ,WX,WY,WZ,R' or 'ring:CX,CY,CZ,NX,NY,NZ,RR,W,R', field='curl' in 3D).
+rotation (default 'two-vector'): how noise='simplex' turns its gradients with the phase in 3D, 'two-vector',
+'fast' or 'well-behaved' (seed 001, `--rotation`).
 
 Returns (c, f): c (n, N), the field vector (RMS |c| = 1), and f (n, N-1), the noise values f_i(x);
 the same numbers as `dfvn-sample field` writes.)");
@@ -184,13 +225,15 @@ the same numbers as `dfvn-sample field` writes.)");
              "boundary_width"_a = py::none(), "field"_a = std::string(to_string(kDefaultFieldKind)),
              "obstacles"_a = std::vector<std::string>{}, "threads"_a = 0,
              "stretch"_a = py::none(), "time"_a = py::none(), "lift"_a = py::none(), "lift_ramp"_a = 0.0,
+             "octaves"_a = 1, "octave_gain"_a = kKolmogorovOctaveGain, "amplitude"_a = std::vector<std::string>{},
+             "viscous"_a = false, "bodies"_a = std::vector<std::string>{}, "vortices"_a = std::vector<std::string>{},
              R"(Trace each point along the field for time t (Algorithm 1); returns where they end, (n, N).
 
 integrator: 'euler' or 'rk4'; reprojection onto the iso-contours of the f_i after every step:
 'none', 'newton' (Eq. 12) or 'gauss-newton' (Eq. 10-11); default 'gauss-newton', and 'none' with
 field='curl', which has no reprojection (its streamlines are not intersections of iso-surfaces; any
-other is refused); steps: M, each of length t / M. The field options (phase, stretch, time and lift
-included: the field at one fixed phase and time) are those of dfvn.field: on the torus the ends are wrapped into [0,1)^N; in the cube or the
+other is refused); steps: M, each of length t / M. The field options (phase, stretch, time, lift and
+Bridson's octaves, amplitude, viscous, bodies and vortices included: the field at one fixed phase and time) are those of dfvn.field: on the torus the ends are wrapped into [0,1)^N; in the cube or the
 ball a trace that a long step carries out is traced again with 2, 4, ..., 64 times the steps (or
 stays at its start). t < 0 traces backwards; a trace reaching the edge of the noise domain stops
 there.)");

@@ -11,6 +11,8 @@
 #include "dfvn/core/hash.hpp"
 #include "dfvn/field/cross_product.hpp"
 #include "dfvn/noise/noise_domain.hpp"
+#include "dfvn/noise/simplex_noise.hpp"
+#include "dfvn/noise/simplex_noise.hpp"
 
 namespace dfvn {
 
@@ -56,6 +58,17 @@ void FieldOptions::validate() const {
       !(transition_width > 0.0 && transition_width <= 0.25))
     throw std::invalid_argument(
         fmt::format("the boundary's transition width must be in (0, 1/4], got {:g}", transition_width));
+  if (transform.rotation != GradientRotation::two_vector &&
+      (noise != NoiseBasis::simplex || transform.active() || periodic))
+    throw std::invalid_argument(fmt::format(
+        "--rotation {} turns the gradients of --noise simplex in 3D (seed 001), without --stretch, --time, --lift or the "
+        "torus; got --noise {}{}",
+        to_string(transform.rotation), to_string(noise), transform.active() ? " with a transform" : periodic ? " on the torus" : ""));
+  flow.validate();
+  if (periodic && (!flow.amplitude.empty() || flow.viscous || !flow.bodies.empty() || !flow.vortices.empty()))
+    throw std::invalid_argument("the torus takes --octaves only: --amplitude, --viscous, --body and --vortex break its period");
+  if (flow.octaves > 1 && transform.lift.active())
+    throw std::invalid_argument("--octaves with --lift would add the lift's ramp once per octave: use one of them");
 }
 
 namespace {
@@ -108,8 +121,13 @@ Vec<N> curl_of(const std::array<Vec<N>, N - 1>& g, const Vec<N>& g3) {
 template <int N>
 std::shared_ptr<const NoiseFunctions<N>> field_noise(const FieldOptions& options, std::uint64_t seed, double time,
                                                      double lift_ramp = 0.0) {
-  if (options.noise == NoiseBasis::steerable)  // validate() refuses a transform beside it
-    return make_steerable_noise<N>(seed, options.phase, options.transform.steer);
+  if (options.noise == NoiseBasis::steerable) {  // validate() refuses a transform beside it
+    SteerSpec spec = options.transform.steer;
+    spec.image_frequency = options.frequency;  // an image covers the unit square of x
+    return make_steerable_noise<N>(seed, options.phase, spec);
+  }
+  if (options.transform.rotation != GradientRotation::two_vector)  // validate(): simplex, no transform, no torus
+    return make_rotating_simplex_noise<N>(seed, options.phase, options.transform.rotation);
   if (!options.transform.active())
     return options.periodic ? make_periodic_noise_functions<N>(options.noise, seed, options.frequency, options.phase)
                             : make_noise_functions<N>(options.noise, seed, options.phase);
@@ -119,6 +137,21 @@ std::shared_ptr<const NoiseFunctions<N>> field_noise(const FieldOptions& options
 
 // The seed of psi_3's basis instance: independent of the seed's own functions ("curl" in ASCII).
 std::uint64_t curl_third_seed(std::uint64_t seed) { return hash_combine(mix64(seed), 0x6375726cULL); }
+
+// The seed of octave o >= 1: independent of the seed's own functions and of psi_3's ("oct" in ASCII, plus o).
+std::uint64_t octave_seed(std::uint64_t seed, int octave) {
+  return hash_combine(mix64(seed), 0x6f637400ULL + static_cast<std::uint64_t>(octave));
+}
+
+// The options of octave o's field: 2^o times the frequency, no constraint, no flow.
+FieldOptions octave_options(const FieldOptions& options, int octave) {
+  FieldOptions o = options;
+  o.frequency = std::ldexp(options.frequency, octave);
+  o.constraint = FieldConstraint::none;
+  o.obstacles = {};
+  o.flow = {};
+  return o;
+}
 
 // A with RMS |A curl n| = 1: the mean of |curl n|^2 over 2^14 Kronecker points in [0, side)^N (the
 // basis's units; side 1 on the torus), A = mean^(-1/2) since c is linear in A.
@@ -148,6 +181,23 @@ DfvnField<N>::DfvnField(std::uint64_t seed, const FieldOptions& options)
       amplitude_(options.periodic ? torus_amplitude<N>(*noise_) : noise_->amplitude()),
       frequency_(options.periodic ? noise_->wavenumber() / (2.0 * std::numbers::pi) : options.frequency) {
   check_obstacles(N, options.constraint, options.obstacles, options.transition_width);
+  flow_active_ = options.flow.active();
+  if (flow_active_) {
+    check_flow(options.flow, N, options.kind == FieldKind::curl, options.constraint, options.obstacles,
+               options.transition_width);
+    solids_ = options.obstacles;
+    for (const Obstacle& b : body_obstacles(options.flow.bodies)) solids_.push_back(b);
+    check_obstacles(N, options.constraint, solids_, options.transition_width);
+    octave_weights_ = octave_weights(options.flow.octaves, options.flow.octave_gain);
+    for (int o = 1; o < options.flow.octaves; ++o)
+      octave_fields_.emplace_back(octave_seed(seed, o), octave_options(options, o));
+    const bool ramped = options.bound == Bound::ramp &&
+                        (options.constraint == FieldConstraint::inside_cube || options.constraint == FieldConstraint::inside_ball);
+    if (ramped && !(options.kind == FieldKind::curl && N == 3))
+      for (int o = 0; o < options.flow.octaves; ++o)
+        octave_constraints_.push_back(std::make_shared<const ConstraintFunction<N>>(
+            options.constraint, std::ldexp(options.transition_width, -o), options.bound));
+  }
   if (options.constraint != FieldConstraint::none && !(options.kind == FieldKind::curl && N == 3))
     constraint_ =
         std::make_shared<const ConstraintFunction<N>>(options.constraint, options.transition_width, options.bound);
@@ -206,6 +256,8 @@ DfvnField<N>::DfvnField(std::uint64_t seed, const FieldOptions& options)
 
 template <int N>
 bool DfvnField<N>::in_domain(const Vec<N>& x) const {
+  for (const DfvnField<N>& octave : octave_fields_)  // the top octave reads the noise fastest
+    if (!octave.in_domain(x)) return false;
   if (!in_noise_domain(Vec<N>(options_.frequency * x))) return false;
   // The stretch reads the noise at A x, the lift also at the height h(x).
   if (stretch_s_minus_1_ != 0.0) [[unlikely]] {
@@ -223,7 +275,8 @@ bool DfvnField<N>::in_domain(const Vec<N>& x) const {
 
 template <int N>
 void DfvnField<N>::check_in_domain(const Vec<N>& x, std::string_view what) const {
-  for (int j = 0; j < N; ++j) check_noise_argument(x[j], options_.frequency, fmt::format("{}, column {}", what, j + 1));
+  const double top_frequency = std::ldexp(options_.frequency, options_.flow.octaves - 1);
+  for (int j = 0; j < N; ++j) check_noise_argument(x[j], top_frequency, fmt::format("{}, column {}", what, j + 1));
   if (!in_domain(x))
     throw std::invalid_argument(fmt::format(
         "{}: the point is outside the noise domain where the field reads it (the stretched point A x or the lift's "
@@ -232,7 +285,7 @@ void DfvnField<N>::check_in_domain(const Vec<N>& x, std::string_view what) const
 }
 
 template <int N>
-FieldSample<N> DfvnField<N>::evaluate_functions(const Vec<N>& x) const {
+FieldSample<N> DfvnField<N>::raw_functions(const Vec<N>& x) const {
   const NoiseSample<N, N - 1> noise = noise_->evaluate(scale_ * x);
   FieldSample<N> out;
   const double value_scale = amplitude_ / scale_;
@@ -240,6 +293,27 @@ FieldSample<N> DfvnField<N>::evaluate_functions(const Vec<N>& x) const {
     out.value[i] = value_scale * noise.value[i];
     out.gradient[i] = amplitude_ * noise.gradient[i];
   }
+  return out;
+}
+
+template <int N>
+FieldSample<N> DfvnField<N>::evaluate_functions(const Vec<N>& x) const {
+  if (flow_active_) {
+    if constexpr (N == 3) {
+      if (curl_noise_) {  // 3D curl noise: psi_1 and psi_2 of the full potential, as evaluate reports them
+        std::array<double, 3> psi;
+        std::array<Vec<N>, 3> jacobian;
+        flow_curl_potential_3d(x, psi, jacobian);
+        FieldSample<N> out;
+        out.value = {psi[0], psi[1]};
+        out.gradient = {jacobian[0], jacobian[1]};
+        out.velocity.setConstant(std::numeric_limits<double>::quiet_NaN());
+        return out;
+      }
+    }
+    return flow_functions(x);
+  }
+  FieldSample<N> out = raw_functions(x);
   if (constraint_) constraint_->replace(x, out.value[0], out.gradient[0]);
   if (constraint_ && !options_.obstacles.empty())
     ramp_obstacles<N>(options_.obstacles, options_.transition_width, x, out.value[0], out.gradient[0]);
@@ -248,19 +322,126 @@ FieldSample<N> DfvnField<N>::evaluate_functions(const Vec<N>& x) const {
 }
 
 template <int N>
+FieldSample<N> DfvnField<N>::flow_functions(const Vec<N>& x) const {
+  // f_1 of octave o: its own f~_1 through the ramp bound (width w / 2^o) and the obstacles' ramps (same
+  // width), times a_o; the other f_i are the weighted sums. The eq13 bound and the sphere act on the sum.
+  const bool ramped = !octave_constraints_.empty();
+  FieldSample<N> out;
+  for (int o = 0; o < options_.flow.octaves; ++o) {
+    FieldSample<N> f = o == 0 ? raw_functions(x) : octave_fields_[o - 1].raw_functions(x);
+    const double width = std::ldexp(options_.transition_width, -o);
+    if (ramped) octave_constraints_[o]->replace(x, f.value[0], f.gradient[0]);
+    if (!solids_.empty()) ramp_obstacles<N>(solids_, width, x, f.value[0], f.gradient[0]);
+    const double a = octave_weights_[o];
+    for (int i = 0; i < N - 1; ++i) {
+      out.value[i] = o == 0 ? a * f.value[i] : out.value[i] + a * f.value[i];
+      out.gradient[i] = o == 0 ? Vec<N>(a * f.gradient[i]) : Vec<N>(out.gradient[i] + a * f.gradient[i]);
+    }
+  }
+  if (constraint_ && !ramped) constraint_->replace(x, out.value[0], out.gradient[0]);
+  // psi -> A psi and, no-slip, -> V psi: (A f)' = A f' + f A'.
+  auto modulate = [&](double factor, const Vec<N>& grad_factor) {
+    out.gradient[0] = factor * out.gradient[0] + out.value[0] * grad_factor;
+    out.value[0] *= factor;
+  };
+  Vec<N> grad;
+  if (!options_.flow.amplitude.empty()) {
+    const double a = flow_amplitude<N>(options_.flow.amplitude, solids_, x, grad);
+    modulate(a, grad);
+  }
+  if (options_.flow.viscous) {
+    const double v = viscous_factor<N>(options_.constraint, solids_, options_.transition_width, x, grad);
+    modulate(v, grad);
+  }
+  out.velocity.setConstant(std::numeric_limits<double>::quiet_NaN());
+  return out;
+}
+
+template <int N>
+void DfvnField<N>::raw_curl_potential(const Vec<N>& x, std::array<double, 3>& psi, std::array<Vec<N>, 3>& jacobian) const {
+  if constexpr (N == 3) {
+    const FieldSample<N> functions = raw_functions(x);
+    const NoiseSample<N, N - 1> third = curl_noise_->evaluate(scale_ * x);
+    psi = {functions.value[0], functions.value[1], amplitude_ / scale_ * third.value[0]};
+    jacobian = {functions.gradient[0], functions.gradient[1], Vec<N>(amplitude_ * third.gradient[0])};
+  } else {
+    (void)x, (void)psi, (void)jacobian;
+    throw std::logic_error("3D curl potential of a field that is not 3D");
+  }
+}
+
+template <int N>
+void DfvnField<N>::flow_curl_potential_3d(const Vec<N>& x, std::array<double, 3>& psi,
+                                          std::array<Vec<N>, 3>& jacobian) const {
+  if constexpr (N == 3) {
+    // Figure 2's psi = A(x) sum_o a_o B_o[psi_o] + B[vortices], B_o Bridson's boundary (Eq. 5) at every solid
+    // with the octave's width; no-slip: that sum times V(x); then the bodies' blended rigid potentials.
+    const bool inviscid = !options_.flow.viscous;
+    const FlowOptions& flow = options_.flow;
+    psi = {0.0, 0.0, 0.0};
+    jacobian = {Vec<3>::Zero(), Vec<3>::Zero(), Vec<3>::Zero()};
+    for (int o = 0; o < flow.octaves; ++o) {
+      std::array<double, 3> p;
+      std::array<Vec<3>, 3> j;
+      if (o == 0) raw_curl_potential(x, p, j);
+      else octave_fields_[o - 1].raw_curl_potential(x, p, j);
+      if (inviscid)
+        bridson_boundary_3d(options_.constraint, solids_, std::ldexp(options_.transition_width, -o), x, p, j);
+      for (int i = 0; i < 3; ++i) {
+        psi[i] += octave_weights_[o] * p[i];
+        jacobian[i] += octave_weights_[o] * j[i];
+      }
+    }
+    Vec<3> grad;
+    if (!flow.amplitude.empty()) {
+      const double a = flow_amplitude<3>(flow.amplitude, solids_, x, grad);
+      for (int i = 0; i < 3; ++i) {
+        jacobian[i] = a * jacobian[i] + psi[i] * grad;
+        psi[i] *= a;
+      }
+    }
+    if (!flow.vortices.empty()) {
+      std::array<double, 3> p{0.0, 0.0, 0.0};
+      std::array<Vec<3>, 3> j{Vec<3>::Zero(), Vec<3>::Zero(), Vec<3>::Zero()};
+      for (const Vortex& v : flow.vortices) add_vortex_potential(v, x, p, j);
+      if (inviscid) bridson_boundary_3d(options_.constraint, solids_, options_.transition_width, x, p, j);
+      for (int i = 0; i < 3; ++i) {
+        psi[i] += p[i];
+        jacobian[i] += j[i];
+      }
+    }
+    if (flow.viscous) {
+      const double v = viscous_factor<3>(options_.constraint, solids_, options_.transition_width, x, grad);
+      for (int i = 0; i < 3; ++i) {
+        jacobian[i] = v * jacobian[i] + psi[i] * grad;
+        psi[i] *= v;
+      }
+    }
+    for (const RigidBody& b : flow.bodies) add_body_potential(b, x, psi, jacobian);
+  } else {
+    (void)x, (void)psi, (void)jacobian;
+    throw std::logic_error("3D curl potential of a field that is not 3D");
+  }
+}
+
+template <int N>
 FieldSample<N> DfvnField<N>::evaluate(const Vec<N>& x) const {
+  if constexpr (N == 3) {
+    if (curl_noise_ && (options_.constraint != FieldConstraint::none || flow_active_)) {
+      // Bridson's boundaries (and the flow's terms): curl of psi_c
+      FieldSample<N> out;
+      std::array<double, 3> psi;
+      std::array<Vec<N>, 3> jacobian;
+      curl_potential_3d(x, psi, jacobian);
+      out.value = {psi[0], psi[1]};
+      out.gradient = {jacobian[0], jacobian[1]};
+      out.velocity = curl_of<N>(out.gradient, jacobian[2]);
+      return out;
+    }
+  }
   FieldSample<N> out = evaluate_functions(x);
   if constexpr (N == 3) {
     if (curl_noise_) {
-      if (options_.constraint != FieldConstraint::none) {  // Bridson's boundaries: curl of psi_c
-        std::array<double, 3> psi;
-        std::array<Vec<N>, 3> jacobian;
-        curl_potential_3d(x, psi, jacobian);
-        out.value = {psi[0], psi[1]};
-        out.gradient = {jacobian[0], jacobian[1]};
-        out.velocity = curl_of<N>(out.gradient, jacobian[2]);
-        return out;
-      }
       const Vec<N> g3 = amplitude_ * curl_noise_->evaluate(scale_ * x).gradient[0];
       out.velocity = curl_of<N>(out.gradient, g3);  // Bridson et al. 2007, curl psi
       return out;
@@ -286,8 +467,9 @@ std::array<double, 3> DfvnField<N>::curl_potential(const Vec<N>& x) const {
 
 template <int N>
 void DfvnField<N>::curl_potential_3d(const Vec<N>& x, std::array<double, 3>& psi, std::array<Vec<N>, 3>& jacobian) const {
+  if (flow_active_) return flow_curl_potential_3d(x, psi, jacobian);
   if constexpr (N == 3) {
-    const FieldSample<N> functions = evaluate_functions(x);  // no constraint_ for 3D curl noise
+    const FieldSample<N> functions = raw_functions(x);  // no constraint_ for 3D curl noise
     const NoiseSample<N, N - 1> third = curl_noise_->evaluate(scale_ * x);
     psi = {functions.value[0], functions.value[1], amplitude_ / scale_ * third.value[0]};
     jacobian = {functions.gradient[0], functions.gradient[1], Vec<N>(amplitude_ * third.gradient[0])};
@@ -301,7 +483,8 @@ void DfvnField<N>::curl_potential_3d(const Vec<N>& x, std::array<double, 3>& psi
 
 template <int N>
 bool DfvnField<N>::contains(const Vec<N>& x) const {
-  return satisfies_constraint<N>(options_.constraint, x) && outside_obstacles<N>(options_.obstacles, x);
+  return satisfies_constraint<N>(options_.constraint, x) &&
+         outside_obstacles<N>(flow_active_ ? solids_ : options_.obstacles, x);
 }
 
 template class DfvnField<2>;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "dfvn/core/dimension.hpp"
+#include "dfvn/field/bridson_flow.hpp"
 #include "dfvn/field/constraint.hpp"
 #include "dfvn/field/field_transform.hpp"
 #include "dfvn/field/obstacles.hpp"
@@ -61,11 +62,16 @@ struct FieldOptions {
   // above as its ramp's width: f_1 times ramp(d / w) for DFVN (any N) and 2D curl noise, Bridson's psi_c
   // for 3D curl noise. Checked against the dimension and the domain by DfvnField<N>.
   std::vector<Obstacle> obstacles = {};
+  // Bridson's toolbox (field/bridson_flow.hpp): octaves with a power law, an amplitude, viscous solids,
+  // moving rigid spheres and vortices. Its defaults (one octave, nothing else) are the field without it,
+  // bit for bit.
+  FlowOptions flow = {};
 
   // throws std::invalid_argument unless the frequency is finite and positive, the phase finite, the
   // constraint's transition width is in (0, 1/4], a periodic field has a periodic basis and no constraint,
   // a curl field has no constraint but the cube or the ball with Bound::ramp, and obstacles have the cube or
-  // the ball (their dimension and placement are checked by DfvnField<N>)
+  // the ball (their dimension and placement are checked by DfvnField<N>), and the flow fits (check_flow; on
+  // the torus only octaves, without a lift)
   void validate() const;
 };
 
@@ -142,8 +148,23 @@ class DfvnField {
   Vec<N> stretch_u_ = Vec<N>::Zero();           // the stretch's unit direction (0 without --stretch)
   double stretch_s_minus_1_ = 0.0;
   std::shared_ptr<const ConstraintFunction<N>> constraint_;  // null: the free field (and 3D curl noise)
-  // 3D curl noise's potential and its Jacobian rows, with Bridson's boundary applied.
+  // 3D curl noise's potential and its Jacobian rows, with Bridson's boundary applied (and the flow's terms).
   void curl_potential_3d(const Vec<N>& x, std::array<double, 3>& psi, std::array<Vec<N>, 3>& jacobian) const;
+  // This field's own basis at its scale and amplitude (one octave, no constraint): values and gradients.
+  FieldSample<N> raw_functions(const Vec<N>& x) const;
+  // 3D curl noise's raw potential (psi_1, psi_2 of noise_, psi_3 of curl_noise_) and its Jacobian rows.
+  void raw_curl_potential(const Vec<N>& x, std::array<double, 3>& psi, std::array<Vec<N>, 3>& jacobian) const;
+  // The flow's f_1 (DFVN and 2D curl noise): octaves with their boundary widths, then amplitude and viscosity.
+  FieldSample<N> flow_functions(const Vec<N>& x) const;
+  void flow_curl_potential_3d(const Vec<N>& x, std::array<double, 3>& psi, std::array<Vec<N>, 3>& jacobian) const;
+  // Octaves 1..K-1 (octave 0 is this field's own basis): fields of the same options at 2^o times the
+  // frequency, independently seeded, without constraint or flow; their weights a_o (field/bridson_flow.hpp)
+  // and, for the ramp bound, the boundary function of each octave's width w / 2^o.
+  std::vector<DfvnField<N>> octave_fields_;
+  std::vector<double> octave_weights_;
+  std::vector<std::shared_ptr<const ConstraintFunction<N>>> octave_constraints_;
+  std::vector<Obstacle> solids_;  // the obstacles, then the bodies as spheres
+  bool flow_active_ = false;
   FieldOptions options_;
   std::uint64_t seed_;
   double scale_;

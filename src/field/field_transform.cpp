@@ -10,6 +10,7 @@
 
 #include "dfvn/core/message_text.hpp"
 #include "dfvn/io/csv.hpp"
+#include "dfvn/io/png.hpp"
 #include "dfvn/io/point_reader.hpp"
 
 namespace dfvn {
@@ -50,23 +51,29 @@ class PlaneHeight final : public HeightField {
 
 class BumpHeight final : public HeightField {
  public:
-  BumpHeight(double h, double r, double cx, double cy) : height_(h), radius_(r), centre_(cx, cy) {}
+  // On the plane SX x + SY y (0 without it: the bump alone, bit for bit as before the plane existed).
+  BumpHeight(double h, double r, double cx, double cy, double sx = 0.0, double sy = 0.0)
+      : height_(h), radius_(r), centre_(cx, cy), slope_(sx, sy) {}
   double height(const Vec<2>& x, Vec<2>& gradient) const override {
     const Vec<2> d = (x - centre_) / radius_;
     const double r2 = d.squaredNorm();
+    const bool plane = slope_[0] != 0.0 || slope_[1] != 0.0;
     if (!(r2 < 1.0)) {
-      gradient.setZero();
-      return 0.0;
+      gradient = slope_;
+      return plane ? slope_.dot(x) : 0.0;
     }
     const double q = 1.0 - r2;  // h = H q^3, grad h = H 3 q^2 (-2 d / R)
     gradient = (-6.0 * height_ * q * q / radius_) * d;
-    return height_ * q * q * q;
+    if (!plane) return height_ * q * q * q;
+    gradient += slope_;
+    return height_ * q * q * q + slope_.dot(x);
   }
 
  private:
   double height_;
   double radius_;
   Vec<2> centre_;
+  Vec<2> slope_;
 };
 
 // The interpolating tensor cubic B-spline of a height grid (LiftSpec::Kind::npy, field_transform.hpp):
@@ -178,8 +185,9 @@ void NoiseTransform::validate() const {
     if (!std::isfinite(lift.ramp)) throw std::invalid_argument("--lift-ramp must be finite");
     if (lift.kind == LiftSpec::Kind::plane && lift.parameters.size() != 2)
       throw std::invalid_argument("--lift plane:SX,SY takes two slopes");
-    if (lift.kind == LiftSpec::Kind::bump && lift.parameters.size() != 4)
-      throw std::invalid_argument("--lift bump:H,R[,CX,CY] takes a height, a radius and optionally a centre");
+    if (lift.kind == LiftSpec::Kind::bump && lift.parameters.size() != 4 && lift.parameters.size() != 6)
+      throw std::invalid_argument(
+          "--lift bump:H,R[,CX,CY[,SX,SY]] takes a height, a radius and optionally a centre and the slopes of a plane under it");
     if (lift.kind == LiftSpec::Kind::npy && (!lift.grid || lift.grid->rows < 2 || lift.grid->columns < 2))
       throw std::invalid_argument("--lift npy:FILE: the height grid needs at least 2 rows and 2 columns");
     if (lift.kind == LiftSpec::Kind::bump && !(lift.parameters[1] > 0.0))
@@ -222,6 +230,52 @@ void parse_stretch(std::string_view text, NoiseTransform& transform) {
   check.validate();
 }
 
+std::shared_ptr<const DirectionGrid> read_steer_image(const std::string& path) {
+  const std::string quoted = quote_for_message(path);
+  auto grid = std::make_shared<DirectionGrid>();
+  grid->source = path;
+  std::vector<std::array<double, 2>> directions;  // row-major, row 0 at y = 0
+  auto ends_with = [&](std::string_view suffix) {
+    return path.size() >= suffix.size() && path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+  };
+  try {
+    if (ends_with(".npy")) {
+      // Shape (rows, columns, 2): the point reader's (M, points, N) with N = 2.
+      const std::vector<PointTable> sets = read_point_sets(path, InputFormat::npy);
+      if (sets.front().dimension != 2 || sets.size() < 2)
+        throw InputError("expected a float array of shape (rows, columns, 2), rows and columns >= 2");
+      grid->rows = static_cast<int>(sets.size());
+      grid->columns = static_cast<int>(sets.front().rows());
+      for (const PointTable& row : sets)
+        for (std::size_t j = 0; j < row.rows(); ++j) directions.push_back({row.coordinates[2 * j], row.coordinates[2 * j + 1]});
+    } else if (ends_with(".png")) {
+      // A flow map: R and G hold the direction's x and y, 0..255 -> -1..1; image up is +y.
+      const RgbImage image = read_png_rgb(path);
+      grid->rows = image.height;
+      grid->columns = image.width;
+      for (int i = 0; i < image.height; ++i) {
+        const std::uint8_t* row = image.pixels.data() + static_cast<std::size_t>(image.height - 1 - i) * image.width * 3;
+        for (int j = 0; j < image.width; ++j)
+          directions.push_back({2.0 * row[3 * j] / 255.0 - 1.0, 2.0 * row[3 * j + 1] / 255.0 - 1.0});
+      }
+    } else {
+      throw InputError("expected a .png flow map or a .npy array of shape (rows, columns, 2)");
+    }
+  } catch (const InputError& e) {
+    throw std::invalid_argument(fmt::format("--steer-image {}: {}", quoted, e.what()));
+  }
+  if (grid->rows < 2 || grid->columns < 2)
+    throw std::invalid_argument(fmt::format("--steer-image {}: at least 2 x 2 pixels, got {} x {}", quoted, grid->rows,
+                                            grid->columns));
+  for (const auto& [ux, uy] : directions) {
+    const double norm = std::hypot(ux, uy);
+    // No direction (u = 0, or a pixel of the PNG's mid grey 127/128): the isotropic tensor I / 2.
+    if (!(norm > 1e-2)) grid->tensors.push_back({0.5, 0.0, 0.5});
+    else grid->tensors.push_back({ux * ux / (norm * norm), ux * uy / (norm * norm), uy * uy / (norm * norm)});
+  }
+  return grid;
+}
+
 LiftSpec parse_lift(std::string_view text) {
   const std::size_t colon = text.find(':');
   const std::string_view name = text.substr(0, colon);
@@ -246,7 +300,7 @@ LiftSpec parse_lift(std::string_view text) {
   else if (name == "bump")
     spec.kind = LiftSpec::Kind::bump;
   else
-    throw std::invalid_argument(fmt::format("--lift takes plane:SX,SY, bump:H,R[,CX,CY] or npy:FILE, got '{}'",
+    throw std::invalid_argument(fmt::format("--lift takes plane:SX,SY, bump:H,R[,CX,CY[,SX,SY]] or npy:FILE, got '{}'",
                                             quote_for_message(std::string(text))));
   if (colon == std::string_view::npos) throw std::invalid_argument(fmt::format("--lift {}: its parameters are missing", name));
   spec.parameters = parse_reals(text.substr(colon + 1), fmt::format("--lift {}", name));
@@ -261,7 +315,9 @@ std::shared_ptr<const HeightField> make_height_field(const LiftSpec& spec) {
   switch (spec.kind) {
     case LiftSpec::Kind::plane: return std::make_shared<const PlaneHeight>(spec.parameters[0], spec.parameters[1]);
     case LiftSpec::Kind::bump:
-      return std::make_shared<const BumpHeight>(spec.parameters[0], spec.parameters[1], spec.parameters[2], spec.parameters[3]);
+      return std::make_shared<const BumpHeight>(spec.parameters[0], spec.parameters[1], spec.parameters[2], spec.parameters[3],
+                                                spec.parameters.size() == 6 ? spec.parameters[4] : 0.0,
+                                                spec.parameters.size() == 6 ? spec.parameters[5] : 0.0);
     case LiftSpec::Kind::npy: return std::make_shared<const SplineHeight>(*spec.grid);
     case LiftSpec::Kind::none: break;
   }

@@ -14,6 +14,7 @@
 #include "dfvn/core/dimension.hpp"
 #include "dfvn/noise/noise_functions.hpp"
 #include "dfvn/noise/noise_transforms.hpp"
+#include "dfvn/noise/rotating_gradients.hpp"
 #include "dfvn/noise/steerable_noise.hpp"
 
 namespace dfvn {
@@ -27,8 +28,9 @@ inline constexpr double kMaxStretch = 1e6;
 // - plane:SX,SY   h(x) = SX x_1 + SY x_2 (a constant slope; a lift onto it is the stretch
 //                 A = I + (sqrt(1 + |grad h|^2) - 1) n n^T along n = grad h / |grad h|, up to a rotation
 //                 of the noise: F is read at (x, grad h . x));
-// - bump:H,R[,CX,CY]  h(x) = H (1 - r^2)^3 for r = |x - (CX, CY)| / R < 1, else 0 (value, slope and
-//                 curvature 0 at r = 1, so C2; a polynomial in r^2, so smooth at the centre); R > 0.
+// - bump:H,R[,CX,CY[,SX,SY]]  h(x) = H (1 - r^2)^3 for r = |x - (CX, CY)| / R < 1, else 0 (value, slope and
+//                 curvature 0 at r = 1, so C2; a polynomial in r^2, so smooth at the centre); R > 0; with SX, SY
+//                 the bump sits on the plane SX x + SY y (the paper's Figure 9: a slope with a hill in its middle).
 // - npy:FILE      a 2D float64/float32 array (rows, columns) from a .npy file, each side 2..65536, every
 //                 element finite, heights in length units. Element (i, j) is the height at x = j / (columns - 1),
 //                 y = i / (rows - 1): the columns run along x and the rows along y over the unit square [0, 1]^2,
@@ -66,6 +68,9 @@ struct NoiseTransform {
   // Not a transform of the basis but its parameters, carried here so that every path that takes a field's
   // transform (field, sample, animate, Python) takes them; not counted by active() (the basis reads them).
   SteerSpec steer;
+  // --rotation: how --noise simplex's gradients turn with the phase in 3D (noise/rotating_gradients.hpp); carried
+  // here for the same reason as `steer`, not counted by active().
+  GradientRotation rotation = kDefaultGradientRotation;
 
   bool active() const { return !stretch_direction.empty() || time.has_value() || lift.active(); }
   // Throws std::invalid_argument with one line for a zero or non-finite direction, S outside
@@ -85,6 +90,12 @@ void parse_stretch(std::string_view text, NoiseTransform& transform);
 // with one line (for a file: its name and what is wrong with it, io/point_reader.hpp read_npy_matrix).
 LiftSpec parse_lift(std::string_view text);
 std::shared_ptr<const HeightField> make_height_field(const LiftSpec& spec);
+// --steer-image FILE: a 2D direction field over the unit square (noise/steerable_noise.hpp, DirectionGrid), from a
+// .png flow map (colour: u = (2 R / 255 - 1, 2 G / 255 - 1), x right and y up, row 0 the top at y = 1) or a .npy
+// float array of shape (rows, columns, 2) holding u at x = j / (columns - 1), y = i / (rows - 1) (numpy's
+// u[i, j]); a direction shorter than 1e-2 counts as none. Throws std::invalid_argument with one line naming the
+// file and what is wrong with it.
+std::shared_ptr<const DirectionGrid> read_steer_image(const std::string& path);
 
 // The N-1 functions the field reads for `transform`, at time `time` (the transform's own time is
 // ignored: the field asks for time 0 too, to measure an amplitude that does not depend on the time).

@@ -3,8 +3,10 @@
 #include <png.h>
 
 #include <stdexcept>
+#include <string>
 
 #include "dfvn/io/atomic_file.hpp"
+#include "dfvn/io/csv.hpp"
 
 namespace dfvn {
 
@@ -37,6 +39,25 @@ void write_png(const std::string& path, const GrayImage& image) {
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
   out.commit();
+}
+
+RgbImage read_png_rgb(const std::string& path) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&image, path.c_str()))
+    throw InputError(std::string("not a readable PNG (") + image.message + ")");
+  if (!(image.format & PNG_FORMAT_FLAG_COLOR)) {
+    png_image_free(&image);
+    throw InputError("a grey PNG: a direction field needs colour (R and G hold the direction)");
+  }
+  image.format = PNG_FORMAT_RGB;
+  RgbImage out{static_cast<int>(image.width), static_cast<int>(image.height), {}};
+  out.pixels.resize(PNG_IMAGE_SIZE(image));
+  if (!png_image_finish_read(&image, nullptr, out.pixels.data(), 0, nullptr)) {
+    png_image_free(&image);
+    throw InputError(std::string("the PNG could not be decoded (") + image.message + ")");
+  }
+  return out;
 }
 
 }  // namespace dfvn

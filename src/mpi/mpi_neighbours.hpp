@@ -57,7 +57,7 @@ class OwnedPoints {
 
   // The RDF of the whole set: this rank's query points (RdfQueries, by output row as in memory) counted
   // against its points and a halo a little wider than r_max, the exact pair sums added over the ranks
-  // (reduce_rdf_pair_sums). `options.periodic` must be this object's `periodic`. The same on every rank.
+  // (reduce_rdf_pair_sums), on the torus when this object is periodic. The same on every rank.
   RdfCurve radial_distribution(const RdfOptions& options, std::uint64_t seed, std::uint64_t total, int threads,
                                const FractionProgress& progress);
 

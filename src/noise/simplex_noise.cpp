@@ -2,8 +2,12 @@
 
 #include <cassert>
 #include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
 
 #include "dfvn/core/hash.hpp"
+#include "dfvn/core/message_text.hpp"
 #include "dfvn/noise/simplex_normalisation.hpp"
 
 namespace dfvn {
@@ -76,13 +80,80 @@ constexpr std::array<std::uint64_t, kMaxDimension> make_axis_multipliers() {
 }
 inline constexpr std::array<std::uint64_t, kMaxDimension> kAxisMultipliers = make_axis_multipliers();
 
+GradientRotation parse_gradient_rotation(std::string_view name) {
+  for (GradientRotation r : kAllGradientRotations)
+    if (name == to_string(r)) return r;
+  throw std::invalid_argument("unknown rotation " + quote_for_message(name) + " (allowed: " + gradient_rotation_names() + ")");
+}
+
+std::string_view to_string(GradientRotation rotation) {
+  switch (rotation) {
+    case GradientRotation::two_vector: return "two-vector";
+    case GradientRotation::fast: return "fast";
+    case GradientRotation::well_behaved: return "well-behaved";
+  }
+  return "?";
+}
+
+std::string gradient_rotation_names() {
+  std::string names;
+  for (GradientRotation r : kAllGradientRotations) names += (names.empty() ? "" : ", ") + std::string(to_string(r));
+  return names;
+}
+
+namespace {
+
+// Seed 001's unit gradients scaled to the length of simplex noise's own 3D gradients, |(1, 1, 0)| = sqrt(2).
+constexpr double kSqrt2 = 1.41421356237309504880;
+
+void scaled(const std::array<double, 3>& u, double* g) {
+  for (int j = 0; j < 3; ++j) g[j] = kSqrt2 * u[j];
+}
+
+}  // namespace
+
 template <int N>
-SimplexNoise<N>::SimplexNoise(std::uint64_t seed, double phase)
+SimplexNoise<N>::SimplexNoise(std::uint64_t seed, double phase, GradientRotation rotation)
     : seed_(seed),
       phase_(phase),
       cos_phase_(std::cos(phase)),
       sin_phase_(std::sin(phase)),
-      seed_hash_(mix64(seed ^ static_cast<std::uint64_t>(Stream::noise))) {}
+      rotation_(rotation),
+      seed_hash_(mix64(seed ^ static_cast<std::uint64_t>(Stream::noise))) {
+  parse_gradient_rotation(to_string(rotation));  // an unknown enum value throws
+  if (rotation != GradientRotation::two_vector && N != 3)
+    throw std::invalid_argument(fmt::format(
+        "--rotation {} is seed 001's 3D construction (the Fibonacci sphere, a cross product with the pole): simplex noise "
+        "in 3D only; in {}D the phase turns the gradients by two-vector",
+        to_string(rotation), N));
+  if constexpr (N == 3) {
+    if (rotation == GradientRotation::fast) {
+      corner_gradient_ = [](const SimplexNoise& s, std::uint64_t h, double* g) {
+        scaled(fast_rotating_gradient(fibonacci_angles(static_cast<int>(h % kFibonacciPoints)), s.cos_phase_, s.sin_phase_), g);
+      };
+      return;
+    }
+    if (rotation == GradientRotation::well_behaved) {
+      if (phase == 0.0)  // Section 5.1's shortcut: g = p, the full formula's bits at cos = 1, sin = 0
+        corner_gradient_ = [](const SimplexNoise&, std::uint64_t h, double* g) {
+          scaled(fibonacci_gradient(fibonacci_angles(static_cast<int>(h % kFibonacciPoints))), g);
+        };
+      else
+        corner_gradient_ = [](const SimplexNoise& s, std::uint64_t h, double* g) {
+          scaled(well_behaved_rotating_gradient(fibonacci_angles(static_cast<int>(h % kFibonacciPoints)), s.cos_phase_,
+                                                s.sin_phase_),
+                 g);
+        };
+      return;
+    }
+  }
+  if (phase == 0.0)
+    corner_gradient_ = [](const SimplexNoise&, std::uint64_t h, double* g) { gradient_from_hash<N>(h, g); };
+  else
+    corner_gradient_ = [](const SimplexNoise& s, std::uint64_t h, double* g) {
+      rotated_gradient_from_hash<N>(h, s.cos_phase_, s.sin_phase_, g);
+    };
+}
 
 template <int N>
 template <int M>
@@ -149,10 +220,10 @@ NoiseSample<N, M> SimplexNoise<N>::evaluate(const Vec<N>& x, int first_function)
       // An independent gradient per function: the vertex hash re-mixed with the function index.
       const std::uint64_t h = mix64(vertex_hash + static_cast<std::uint64_t>(first_function + m + 1) * kGoldenGamma);
       Vec<N> g;
-      if (phase_ != 0.0)
-        rotated_gradient_from_hash<N>(h, cos_phase_, sin_phase_, g.data());
-      else
+      if (phase_ == 0.0 && rotation_ == GradientRotation::two_vector)  // the hot path, inlined: the phase-free noise
         gradient_from_hash<N>(h, g.data());
+      else
+        corner_gradient_(*this, h, g.data());
       const double g_dot_d = g.dot(offset);
       // d/dx [t^4 (g.d)] = t^4 g + 4 t^3 (g.d) dt/dx, with dt/dx = -2 d.
       out.value[m] += t4 * g_dot_d;
@@ -190,14 +261,22 @@ double simplex_wavenumber(int dimension) {
 }
 
 template <int N>
-SimplexNoiseFunctions<N>::SimplexNoiseFunctions(std::uint64_t seed, double phase)
-    : noise_(seed, phase), wavenumber_(simplex_wavenumber(N)), amplitude_(simplex_field_amplitude(N)) {}
+SimplexNoiseFunctions<N>::SimplexNoiseFunctions(std::uint64_t seed, double phase, GradientRotation rotation)
+    : noise_(seed, phase, rotation), wavenumber_(simplex_wavenumber(N)), amplitude_(simplex_field_amplitude(N)) {}
+
+template <int N>
+std::shared_ptr<const NoiseFunctions<N>> make_rotating_simplex_noise(std::uint64_t seed, double phase,
+                                                                     GradientRotation rotation) {
+  check_noise_phase(phase);
+  return std::make_shared<const SimplexNoiseFunctions<N>>(seed, phase, rotation);
+}
 
 // Every dimension with the fused (all N-1 functions) and the single-function traversal; in 2D the
 // two are the same instantiation.
 #define DFVN_INSTANTIATE_NOISE(N)                                                             \
   template class SimplexNoise<N>;                                                             \
   template class SimplexNoiseFunctions<N>;                                                    \
+  template std::shared_ptr<const NoiseFunctions<N>> make_rotating_simplex_noise<N>(std::uint64_t, double, GradientRotation); \
   template NoiseSample<N, N - 1> SimplexNoise<N>::evaluate<N - 1>(const Vec<N>&, int) const;
 
 #define DFVN_INSTANTIATE_NOISE_SINGLE(N) \

@@ -4,8 +4,11 @@
 #include <array>
 #include <cstdint>
 
+#include <memory>
+
 #include "dfvn/core/dimension.hpp"
 #include "dfvn/noise/noise_functions.hpp"
+#include "dfvn/noise/rotating_gradients.hpp"
 
 namespace dfvn {
 
@@ -51,7 +54,9 @@ class SimplexNoise {
   static constexpr int kMaxFunctions = N - 1;
   static constexpr double kKernelRadius2 = 0.5;
 
-  explicit SimplexNoise(std::uint64_t seed, double phase = 0.0);
+  // `rotation`: how the gradients turn with the phase (noise/rotating_gradients.hpp); fast and well_behaved
+  // exist in 3D only (std::invalid_argument otherwise). two_vector is the method described above.
+  explicit SimplexNoise(std::uint64_t seed, double phase = 0.0, GradientRotation rotation = kDefaultGradientRotation);
 
   // Values and gradients of the functions first_function .. first_function + M - 1 at x, computed in
   // one traversal of the simplex. Function indices are in [0, kMaxFunctions).
@@ -63,10 +68,17 @@ class SimplexNoise {
 
   std::uint64_t seed() const { return seed_; }
   double phase() const { return phase_; }
+  GradientRotation rotation() const { return rotation_; }
+  // The corner gradient of hash h at this noise's phase, by its rotation method.
+  void corner_gradient(std::uint64_t h, double* g) const { corner_gradient_(*this, h, g); }
 
  private:
   std::uint64_t seed_;
   double phase_ = 0.0, cos_phase_ = 1.0, sin_phase_ = 0.0;
+  GradientRotation rotation_ = kDefaultGradientRotation;
+  // The (rotation, phase) policy, chosen once in the constructor.
+  using CornerGradient = void (*)(const SimplexNoise&, std::uint64_t, double*);
+  CornerGradient corner_gradient_;
   std::uint64_t seed_hash_;  // mix64 of the seed and the noise stream, the start of every vertex hash
 };
 
@@ -77,7 +89,8 @@ double simplex_wavenumber(int dimension);
 template <int N>
 class SimplexNoiseFunctions final : public NoiseFunctions<N> {
  public:
-  explicit SimplexNoiseFunctions(std::uint64_t seed, double phase = 0.0);
+  explicit SimplexNoiseFunctions(std::uint64_t seed, double phase = 0.0,
+                                 GradientRotation rotation = kDefaultGradientRotation);
   NoiseSample<N, N - 1> evaluate(const Vec<N>& x) const override { return noise_.evaluate_all(x); }
   double wavenumber() const override { return wavenumber_; }
   double amplitude() const override { return amplitude_; }
@@ -87,6 +100,12 @@ class SimplexNoiseFunctions final : public NoiseFunctions<N> {
   double wavenumber_;
   double amplitude_;
 };
+
+// --noise simplex with a rotation method (noise/rotating_gradients.hpp); throws std::invalid_argument naming the
+// methods' dimension for fast and well_behaved outside 3D.
+template <int N>
+std::shared_ptr<const NoiseFunctions<N>> make_rotating_simplex_noise(std::uint64_t seed, double phase,
+                                                                     GradientRotation rotation);
 
 extern template class SimplexNoise<2>;
 extern template class SimplexNoise<3>;

@@ -1,6 +1,8 @@
 #include "dfvn/noise/steerable_noise.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include <Eigen/LU>
@@ -13,11 +15,18 @@ namespace dfvn {
 void check_steer_spec(const SteerSpec& spec, int dimension) {
   if (dimension < 2 || dimension > kMaxSteerableDimension)
     throw std::invalid_argument(fmt::format("steerable noise is defined in 2D to 4D (2^N corners per function), not in {}D", dimension));
-  if (spec.circular && !spec.direction.empty())
-    throw std::invalid_argument("steerable noise takes one direction field: --steer-dir or --steer-field circular, not both");
-  if (!spec.circular && spec.direction.empty())
-    throw std::invalid_argument("steerable noise needs a direction: --steer-dir U (N components) or --steer-field circular");
-  if (!spec.circular) {
+  const int fields = (spec.circular ? 1 : 0) + (spec.direction.empty() ? 0 : 1) + (spec.image ? 1 : 0);
+  if (fields > 1)
+    throw std::invalid_argument(
+        "steerable noise takes one direction field, not both (nor three): --steer-dir, --steer-field circular or --steer-image");
+  if (fields == 0)
+    throw std::invalid_argument(
+        "steerable noise needs a direction: --steer-dir U (N components), --steer-field circular or --steer-image FILE");
+  if (spec.image && dimension != 2)
+    throw std::invalid_argument(fmt::format("--steer-image steers 2D noise (an image is a 2D direction field), not {}D", dimension));
+  if (spec.quality < 0 || spec.quality > dimension)
+    throw std::invalid_argument(fmt::format("--steer-quality must be in 0..N = 0..{}, got {}", dimension, spec.quality));
+  if (!spec.direction.empty()) {
     if (static_cast<int>(spec.direction.size()) != dimension)
       throw std::invalid_argument(fmt::format("--steer-dir has {} components; the dimension is {}", spec.direction.size(), dimension));
     double norm2 = 0.0;
@@ -49,6 +58,19 @@ namespace {
 inline double falloff(double t) { return t < 1.0 ? 1.0 - quintic_fade(t) : 0.0; }
 inline double falloff_slope(double t) { return t < 1.0 ? -quintic_fade_slope(t) : 0.0; }
 
+// The uniform cubic B-spline's four weights at t in [0, 1) and their derivatives in t.
+void bspline_weights(double t, double w[4], double dw[4]) {
+  const double t2 = t * t, t3 = t2 * t, u = 1.0 - t;
+  w[0] = u * u * u / 6.0;
+  w[1] = (3.0 * t3 - 6.0 * t2 + 4.0) / 6.0;
+  w[2] = (-3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0) / 6.0;
+  w[3] = t3 / 6.0;
+  dw[0] = -0.5 * u * u;
+  dw[1] = 1.5 * t2 - 2.0 * t;
+  dw[2] = -1.5 * t2 + t + 0.5;
+  dw[3] = 0.5 * t2;
+}
+
 // Roberts' R_N sequence (as field/dfvn_field.cpp): alpha_j = phi^-(j+1), phi the root of x^(N+1) = x + 1.
 template <int N>
 Vec<N> kronecker_step() {
@@ -61,16 +83,67 @@ Vec<N> kronecker_step() {
 
 }  // namespace
 
+std::array<double, 3> direction_tensor(const DirectionGrid& grid, const Vec<2>& x,
+                                       std::array<std::array<double, 3>, 2>* gradient) {
+  // Continuous pixel coordinates: column u = x_1 (columns - 1), row v = x_2 (rows - 1).
+  const double su = grid.columns - 1, sv = grid.rows - 1;
+  const double u = x[0] * su, v = x[1] * sv;
+  const double fu = std::floor(u), fv = std::floor(v);
+  double wu[4], dwu[4], wv[4], dwv[4];
+  bspline_weights(u - fu, wu, dwu);
+  bspline_weights(v - fv, wv, dwv);
+  std::array<double, 3> h{0.0, 0.0, 0.0};
+  std::array<std::array<double, 3>, 2> g{};
+  for (int a = 0; a < 4; ++a) {
+    const double row_index = std::clamp(fv - 1.0 + a, 0.0, sv);  // clamped: the border continues
+    for (int b = 0; b < 4; ++b) {
+      const double column_index = std::clamp(fu - 1.0 + b, 0.0, su);
+      const auto& t = grid.tensors[static_cast<std::size_t>(row_index) * grid.columns + static_cast<std::size_t>(column_index)];
+      for (int c = 0; c < 3; ++c) {
+        h[c] += wv[a] * wu[b] * t[c];
+        g[0][c] += wv[a] * dwu[b] * su * t[c];
+        g[1][c] += dwv[a] * sv * wu[b] * t[c];
+      }
+    }
+  }
+  if (gradient) *gradient = g;
+  return h;
+}
+
 template <int N>
 SteerableNoise<N>::SteerableNoise(std::uint64_t seed, double phase, const SteerSpec& spec)
     : lattice_((check_steer_spec(spec, N), seed), phase), spec_(spec) {
-  across_ = (4.0 - spec.k) / (N - 1) - kSteerEpsilon;
+  side_ = 2 * spec.quality + 2;
+  corners_ = 1;
+  for (int d = 0; d < N; ++d) corners_ *= side_;
+  weight_scale_ = 1.0 / (spec.quality + 1);  // the document's 2 / (|start| + |end| + 1) = 2 / (2Q + 2)
+  steer_k_ = spec.k / (spec.quality + 1);
+  across_ = (4.0 - steer_k_) / (N - 1) - kSteerEpsilon;
   isotropic_ = (4.0 - (N - 1) * kSteerEpsilon) / N;
-  if (!spec.circular) {
+  if (!spec.direction.empty()) {
     for (int j = 0; j < N; ++j) u_[j] = spec.direction[j];
     u_ /= u_.norm();
-    constant_metric_ = steer_metric<N>(u_, spec.k);
+    constant_metric_ = steer_metric<N>(u_, steer_k_);
   }
+  if (spec.image) {
+    if (!(spec.image_frequency > 0.0))
+      throw std::invalid_argument("--steer-image: the field's frequency maps the image onto the unit square (image_frequency unset)");
+    // k_eff and the amplitude of the same noise steered by (1, 0), which place the image (module comment).
+    SteerSpec constant = spec;
+    constant.image = nullptr;
+    constant.direction.assign(N, 0.0);
+    constant.direction[0] = 1.0;
+    const SteerableNoise twin(seed, phase, constant);
+    wavenumber_ = twin.wavenumber_;
+    amplitude_ = twin.amplitude_;
+    image_scale_ = 2.0 * std::numbers::pi * spec.image_frequency / wavenumber_;
+    return;
+  }
+  measure();
+}
+
+template <int N>
+void SteerableNoise<N>::measure() {
   // The moments over 2^15 Kronecker points of [-32, 32)^N, summed in point order (deterministic).
   constexpr int kPoints = 1 << 15;
   constexpr double kSide = 64.0;
@@ -97,6 +170,21 @@ SteerableNoise<N>::SteerableNoise(std::uint64_t seed, double phase, const SteerS
 
 template <int N>
 typename SteerableNoise<N>::Matrix SteerableNoise<N>::metric(const Vec<N>& y, std::array<Matrix, N>* derivatives) const {
+  if constexpr (N == 2) {
+    if (spec_.image) {  // G = a I + (k - a) H(y / image_scale)
+      std::array<std::array<double, 3>, 2> dh;
+      const std::array<double, 3> h = direction_tensor(*spec_.image, y / image_scale_, &dh);
+      const double slope = steer_k_ - across_;
+      Matrix g;
+      g << across_ + slope * h[0], slope * h[1], slope * h[1], across_ + slope * h[2];
+      if (derivatives)
+        for (int j = 0; j < 2; ++j) {
+          const double f = slope / image_scale_;  // d/dy = (1 / image_scale) d/dx
+          (*derivatives)[j] << f * dh[j][0], f * dh[j][1], f * dh[j][1], f * dh[j][2];
+        }
+      return g;
+    }
+  }
   if (!spec_.circular) {
     if (derivatives)
       for (auto& d : *derivatives) d.setZero();
@@ -109,7 +197,7 @@ typename SteerableNoise<N>::Matrix SteerableNoise<N>::metric(const Vec<N>& y, st
   const double r2 = y[0] * y[0] + y[1] * y[1];
   const double core2 = kSteerCircularCore * kSteerCircularCore;
   const double q = r2 + core2;
-  const double slope = spec_.k - across_;
+  const double slope = steer_k_ - across_;
   const double c = isotropic_ + (across_ - isotropic_) * r2 / q;
   Matrix g = (slope / q) * (u * u.transpose());
   g.diagonal().array() += c;
@@ -136,12 +224,12 @@ double SteerableNoise<N>::weight_sum(int function, const Vec<N>& y) const {
   Vec<N> f;
   for (int d = 0; d < N; ++d) f[d] = z[d] - std::floor(z[d]);
   double sum = 0.0;
-  for (int corner = 0; corner < kCorners; ++corner) {
+  for (int corner = 0; corner < corners_; ++corner) {
     Vec<N> v;
     double perlin = 1.0;
-    for (int d = 0; d < N; ++d) {
-      v[d] = static_cast<double>((corner >> d) & 1) - f[d];
-      perlin *= falloff(std::abs(v[d]));
+    for (int d = 0, rest = corner; d < N; ++d, rest /= side_) {
+      v[d] = static_cast<double>(rest % side_ - spec_.quality) - f[d];
+      perlin *= falloff(weight_scale_ * std::abs(v[d]));
     }
     const Vec<N> vw = rotation.transpose() * v;
     sum += perlin * falloff(vw.dot(g * vw));
@@ -152,8 +240,9 @@ double SteerableNoise<N>::weight_sum(int function, const Vec<N>& y) const {
 template <int N>
 NoiseSample<N, N - 1> SteerableNoise<N>::evaluate(const Vec<N>& y) const {
   std::array<Matrix, N> dg;
-  const Matrix g = metric(y, spec_.circular ? &dg : nullptr);
+  const Matrix g = metric(y, spec_.circular || spec_.image ? &dg : nullptr);
   const bool phased = lattice_.phase() != 0.0;
+  const bool varying = spec_.circular || spec_.image != nullptr;
   NoiseSample<N, N - 1> out;
   for (int i = 0; i < N - 1; ++i) {
     const auto& rotation = lattice_.rotation(i);
@@ -166,18 +255,18 @@ NoiseSample<N, N - 1> SteerableNoise<N>::evaluate(const Vec<N>& y) const {
     }
     double value = 0.0;
     Vec<N> gradient = Vec<N>::Zero();  // with respect to y (world)
-    for (int corner = 0; corner < kCorners; ++corner) {
+    for (int corner = 0; corner < corners_; ++corner) {
       std::array<std::int64_t, N> point;
-      Vec<N> v;  // lattice frame: from the sample to the corner, in (-1, 1]^N
-      std::array<double, N> w, dw;  // phi(|v_d|) and d/dv_d phi(|v_d|)
+      Vec<N> v;  // lattice frame: from the sample to the corner, in (-Q-1, Q+1]^N
+      std::array<double, N> w, dw;  // phi(|v_d| / (Q+1)) and its derivative in v_d
       double perlin = 1.0;
-      for (int d = 0; d < N; ++d) {
-        const int bit = (corner >> d) & 1;
-        point[d] = cell[d] + bit;
-        v[d] = static_cast<double>(bit) - f[d];
-        const double t = std::abs(v[d]);
+      for (int d = 0, rest = corner; d < N; ++d, rest /= side_) {
+        const int offset = rest % side_ - spec_.quality;
+        point[d] = cell[d] + offset;
+        v[d] = static_cast<double>(offset) - f[d];
+        const double t = weight_scale_ * std::abs(v[d]);
         w[d] = falloff(t);
-        dw[d] = v[d] < 0.0 ? -falloff_slope(t) : falloff_slope(t);
+        dw[d] = weight_scale_ * (v[d] < 0.0 ? -falloff_slope(t) : falloff_slope(t));
         perlin *= w[d];
       }
       if (perlin == 0.0) continue;  // every factor of the term and of its gradient vanishes with P (C2 at |v_d| = 1)
@@ -202,7 +291,7 @@ NoiseSample<N, N - 1> SteerableNoise<N>::evaluate(const Vec<N>& y) const {
       // v_w = R^T (corner - o) - y, so d v_w / d y = -I and d v / d y = -R:
       gradient -= (perlin * aniso) * (g * gw) + (dot * aniso) * (r.transpose() * dperlin) +
                   (2.0 * dot * perlin * aniso_slope) * gv;
-      if (spec_.circular)
+      if (varying)
         for (int j = 0; j < N; ++j)
           gradient[j] += perlin * (aniso * gw.dot(dg[j] * vw) + dot * aniso_slope * vw.dot(dg[j] * vw));
     }

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -22,19 +23,48 @@ inline constexpr double kDefaultSteerK = 0.5;      // the document's k (its demo
 inline constexpr double kSteerEpsilon = 1e-4;      // the document's epsilon
 inline constexpr double kSteerCircularCore = 1.0;  // the circular field's core radius, in lattice cells
 
-// Which direction field steers the noise: a constant direction (any non-zero length: G discards |u|) or
-// the document's circular field u(y) = (-y_2, y_1, 0, ...) around the origin (Figure 2).
+// A 2D direction field read from an image or an array (--steer-image, Figure 3's image-driven field), over the
+// unit square of the field's coordinates: per pixel the tensor T = u u^T of its unit direction u (T = I / 2
+// where u = 0: no direction), stored as (T_xx, T_xy, T_yy). Pixel (i, j) sits at x = j / (columns - 1),
+// y = i / (rows - 1) (rows, columns >= 2). The noise reads H(x), the uniform cubic B-spline of the tensors (not
+// interpolating: its weights are >= 0 and sum to 1, so H is a convex combination of unit rank-one tensors,
+// symmetric with trace 1 and eigenvalues in [0, 1]), C2 everywhere; beyond the square its control points
+// continue as the border's.
+struct DirectionGrid {
+  int rows = 0, columns = 0;
+  std::vector<std::array<double, 3>> tensors;  // rows x columns, pixel (i, j) at i * columns + j
+  std::string source;                          // the file it was read from (for messages and records)
+};
+
+// Which direction field steers the noise: a constant direction (any non-zero length: G discards |u|), the
+// document's circular field u(y) = (-y_2, y_1, 0, ...) around the origin (Figure 2) or, in 2D, an image's
+// (Figure 3).
 struct SteerSpec {
-  std::vector<double> direction;  // the constant direction U; empty with `circular`
+  std::vector<double> direction;  // the constant direction U; empty with `circular` or `image`
   double k = kDefaultSteerK;
   bool circular = false;
-  bool active() const { return !direction.empty() || circular; }
+  std::shared_ptr<const DirectionGrid> image;  // --steer-image (2D)
+  // The image's unit square in the basis's units: y = image_scale x. Set by the field (2 pi F / k_eff of the
+  // same noise steered by a constant direction, whose k_eff and amplitude the image-steered noise reports, so
+  // that the field's own scale s maps the image onto [0, 1]^2 exactly); 0 until then.
+  double image_frequency = 0.0;  // the field's F, which the noise turns into image_scale
+  // The document's Section 2 "quality" Q in 0..N: the corners run from -Q to Q + 1 along each axis ((2Q + 2)^N of
+  // them), the smallest eigenvalue k becomes k / (Q + 1) and the Perlin weights read v / (Q + 1) (its
+  // 2 / (|start| + |end| + 1)); Q = 0 is the single-order noise. (The text's loop -(Q - 1)..Q is empty at
+  // Q = 0 and disagrees with its own code's -Q..Q + 1, which we follow: data/steerable_notes.md.)
+  int quality = 0;
+  bool active() const { return !direction.empty() || circular || image != nullptr; }
 };
 
 // Throws std::invalid_argument with one line unless the spec is usable in `dimension`: 2 <= N <= 4, exactly
-// one of a direction (N finite components, not all 0) and the circular field, and 0 < k <= 1 with k below
-// (4 - (N-1) eps) / N (so that the remapped eigenvalue along u is the smallest one: k = 1 in 4D is refused).
+// one of a direction (N finite components, not all 0), the circular field and an image (2D only), 0 < k <= 1
+// with k below (4 - (N-1) eps) / N (so that the remapped eigenvalue along u is the smallest one: k = 1 in 4D is
+// refused), and the quality in 0..N.
 void check_steer_spec(const SteerSpec& spec, int dimension);
+
+// H(x) of the grid at x (field coordinates) and, if asked, dH/dx_1 and dH/dx_2, each as (xx, xy, yy).
+std::array<double, 3> direction_tensor(const DirectionGrid& grid, const Vec<2>& x,
+                                       std::array<std::array<double, 3>, 2>* gradient = nullptr);
 
 // The document's metric (Section 1.1): the eigenvalues of H = u u^T, |u|^2 along u and 0 across it, are
 // remapped linearly to mu = k along u and a = (4 - k) / (N - 1) - eps across it:
@@ -60,6 +90,12 @@ Eigen::Matrix<double, N, N> steer_metric(const Vec<N>& unit_direction, double k)
 // r = |u| = |(y_1, y_2)|, d = kSteerCircularCore: the document's G away from the axis (r >> d), the
 // isotropic metric of the same trace on it (where u = 0 has no direction), smooth (rational) in between,
 // with tr G = 4 - (N - 1) eps everywhere. The gradient includes the terms of dG/dy.
+// With an image (2D): G(y) = a I + (k - a) H(y / image_scale), H the direction tensors' B-spline (DirectionGrid):
+// where the image has one direction u, H = u u^T and G is the document's metric; where its directions disagree
+// H tends to I / 2 and G to the isotropic metric of the same trace (tr G = a + k = 4 - eps everywhere); dG/dy
+// comes from the B-spline's derivative, so the gradient is analytic. Its k_eff and amplitude are those of the same
+// noise steered by the constant direction (1, 0), measured as below (the local statistics of a turned lattice).
+// With quality Q (SteerSpec::quality): the corners -Q..Q+1 per axis, k / (Q + 1) for k, weights P(v / (Q + 1)).
 // wavenumber() and amplitude() are measured per instance (seed, phase, spec) over 2^15 points of a
 // Kronecker sequence in the box [-32, 32)^N of the basis's units (centred on the circular field's axis):
 // E n^2, E|grad n|^2 and E|cross(grad n_i)|^2, so RMS |c| = 1 as for every basis.
@@ -67,7 +103,6 @@ template <int N>
 class SteerableNoise final : public NoiseFunctions<N> {
  public:
   static_assert(N >= 2 && N <= kMaxSteerableDimension);
-  static constexpr int kCorners = 1 << N;
   using Matrix = Eigen::Matrix<double, N, N>;
 
   // Throws std::invalid_argument (check_steer_spec) for a bad spec.
@@ -85,8 +120,15 @@ class SteerableNoise final : public NoiseFunctions<N> {
   double remapped_across() const { return across_; }  // a = (4 - k) / (N - 1) - eps
 
  private:
+  // The measurement of k_eff and the amplitude (the constructor's loop over Kronecker points).
+  void measure();
   QuinticGradientNoise<N> lattice_;
   SteerSpec spec_;
+  int side_ = 2;                 // corners per axis, 2Q + 2
+  int corners_ = 1 << N;         // side_^N
+  double weight_scale_ = 1.0;    // the Perlin weights read v / (Q + 1)
+  double steer_k_ = kDefaultSteerK;  // k / (Q + 1)
+  double image_scale_ = 0.0;     // y = image_scale_ x for the image
   Vec<N> u_ = Vec<N>::Zero();  // the constant unit direction
   Matrix constant_metric_ = Matrix::Identity();
   double across_ = 0.0, isotropic_ = 0.0;

@@ -40,6 +40,9 @@ void Figure9Config::validate() const {
         fmt::format("{} --rk4-steps must be a multiple of --segments ({}) in [{}, 100000], got {}", n, segments, segments, steps));
   if (image < 16 || image > 8192) throw std::invalid_argument(fmt::format("{} --image must be in [16, 8192], got {}", n, image));
   check_noise_frequency(frequency, n + " --frequency");
+  if (!std::isfinite(bump_height) || std::abs(bump_height) > 1000.0 || !(bump_radius > 0.0 && bump_radius <= 10.0))
+    throw std::invalid_argument(fmt::format("{} --bump H,R needs a finite H of at most 1000 in size and R in (0, 10], got {},{}",
+                                            n, bump_height, bump_radius));
   check_thread_count(threads);
 }
 
@@ -49,8 +52,13 @@ Figure9Result run_figure9(const Figure9Config& config, const FractionProgress& p
   result.config = config;
   result.machine = machine_description();
   FieldOptions options{config.noise, config.frequency};
-  options.transform.lift.kind = LiftSpec::Kind::plane;
-  options.transform.lift.parameters = {config.slope_x, config.slope_y};
+  if (config.bump_height != 0.0) {  // the hill on the plane
+    options.transform.lift.kind = LiftSpec::Kind::bump;
+    options.transform.lift.parameters = {config.bump_height, config.bump_radius, 0.5, 0.5, config.slope_x, config.slope_y};
+  } else {
+    options.transform.lift.kind = LiftSpec::Kind::plane;
+    options.transform.lift.parameters = {config.slope_x, config.slope_y};
+  }
   options.transform.lift.ramp = config.used_ramp();
   const DfvnField<2> field(config.seed, options);
   TraceOptions trace;
@@ -88,6 +96,22 @@ Figure9Result run_figure9(const Figure9Config& config, const FractionProgress& p
     const double* t = result.traces.data() + static_cast<std::size_t>(p) * points * 2;
     const double dx = t[2 * (points - 1)] - t[0], dy = t[2 * (points - 1) + 1] - t[1];
     sx += dx, sy += dy, sxx += dx * dx, sxy += dx * dy, syy += dy * dy;
+  }
+  // Turns about the hill's centre of the particles starting within R / 2 of it (the angle's unwrapped increments).
+  if (config.bump_height != 0.0) {
+    double turns = 0.0;
+    for (int p = 0; p < particles; ++p) {
+      const double* t = result.traces.data() + static_cast<std::size_t>(p) * points * 2;
+      if (std::hypot(t[0] - 0.5, t[1] - 0.5) > 0.5 * config.bump_radius) continue;
+      double angle = 0.0;
+      for (int j = 0; j + 1 < points; ++j) {
+        const double a0 = std::atan2(t[2 * j + 1] - 0.5, t[2 * j] - 0.5), a1 = std::atan2(t[2 * j + 3] - 0.5, t[2 * j + 2] - 0.5);
+        angle += std::remainder(a1 - a0, 2.0 * std::numbers::pi);
+      }
+      turns += angle / (2.0 * std::numbers::pi);
+      ++result.centre_particles;
+    }
+    if (result.centre_particles > 0) result.centre_turns = turns / static_cast<double>(result.centre_particles);
   }
   const double n = particles;
   result.mean_dx = sx / n, result.mean_dy = sy / n;
@@ -137,20 +161,24 @@ GrayImage draw_traces(const Figure9Result& r) {
     x = cx - 0.5 * side + side * (col + 0.5) / s;
     y = cy + 0.5 * side - side * (row + 0.5) / s;  // y up
   };
-  double h_lo = 0.0, h_hi = 0.0;
-  for (int corner = 0; corner < 4; ++corner) {
-    double x, y;
-    world(corner % 2 ? s - 1 : 0, corner / 2 ? s - 1 : 0, x, y);
-    const double h = c.slope_x * x + c.slope_y * y;
-    h_lo = corner ? std::min(h_lo, h) : h, h_hi = corner ? std::max(h_hi, h) : h;
-  }
+  // The surface's heights at every pixel, shaded between their extremes.
+  auto height = [&](double x, double y) {
+    const double dx = (x - 0.5) / c.bump_radius, dy = (y - 0.5) / c.bump_radius, q = 1.0 - dx * dx - dy * dy;
+    return c.slope_x * x + c.slope_y * y + (q > 0.0 ? c.bump_height * q * q * q : 0.0);
+  };
+  std::vector<double> heights(static_cast<std::size_t>(s) * s);
   for (int row = 0; row < s; ++row)
     for (int col = 0; col < s; ++col) {
       double x, y;
       world(col, row, x, y);
-      const double t = h_hi > h_lo ? (c.slope_x * x + c.slope_y * y - h_lo) / (h_hi - h_lo) : 0.0;
-      image.pixels[static_cast<std::size_t>(row) * s + col] = static_cast<std::uint8_t>(std::lround(250.0 - 70.0 * t));
+      heights[static_cast<std::size_t>(row) * s + col] = height(x, y);
     }
+  const auto [lo, hi] = std::minmax_element(heights.begin(), heights.end());
+  const double h_lo = *lo, h_hi = *hi;
+  for (std::size_t i = 0; i < heights.size(); ++i) {
+    const double t = h_hi > h_lo ? (heights[i] - h_lo) / (h_hi - h_lo) : 0.0;
+    image.pixels[i] = static_cast<std::uint8_t>(std::lround(250.0 - 70.0 * t));
+  }
   auto plot = [&](double x, double y, std::uint8_t value) {
     const auto col = static_cast<long>(std::floor((x - (cx - 0.5 * side)) / side * s));
     const auto row = static_cast<long>(std::floor(((cy + 0.5 * side) - y) / side * s));
@@ -180,12 +208,14 @@ std::string figure9_markdown(const Figure9Result& r) {
   std::string md = fmt::format("# {}: particle traces over a slope, {} the vertical ramp\n\n",
                                c.ramp_figure ? "Figure 9" : "Figure 10", c.ramp_figure ? "with" : "without");
   md += fmt::format(
-      "Made by `dfvn-sample reproduce {} --slope {},{}{} --grid {} --trace-time {} --rk4-steps {} --segments {} --frequency {} "
+      "Made by `dfvn-sample reproduce {} --slope {},{}{}{} --grid {} --trace-time {} --rk4-steps {} --segments {} --frequency {} "
       "--noise {} --seed {}`: {}x{} particles at the cell centres of the unit square, traced for t = {} ({} RK4 steps, "
       "Gauss-Newton reprojection after each, drawn at {} points) along the 2D field lifted onto the plane h = {} x + {} "
       "y (`--lift plane:{},{}`{}): f(x) = F(x, h(x)) for {} noise F at {} cycles per unit length.\n\n",
       n, format_real(c.slope_x, 6), format_real(c.slope_y, 6),
-      c.ramp_figure ? fmt::format(" --lift-ramp {}", format_real(c.ramp, 6)) : std::string(), c.grid,
+      c.ramp_figure ? fmt::format(" --lift-ramp {}", format_real(c.ramp, 6)) : std::string(),
+      c.ramp_figure ? fmt::format(" --bump {},{}", format_real(c.bump_height, 6), format_real(c.bump_radius, 6)) : std::string(),
+      c.grid,
       format_real(c.time, 6), c.steps, c.segments, format_real(c.frequency, 6), to_string(c.noise), c.seed, c.grid, c.grid,
       format_real(c.time, 6), c.steps, c.segments, format_real(c.slope_x, 6), format_real(c.slope_y, 6),
       format_real(c.slope_x, 6), format_real(c.slope_y, 6),
@@ -224,6 +254,15 @@ std::string figure9_markdown(const Figure9Result& r) {
                                               format_real(-c.ramp * c.slope_x * c.time, 4)),
                                   format_real(c.time, 4))
                     : std::string(" Without the ramp no direction along the contour lines is preferred."));
+  if (c.bump_height != 0.0)
+    md += fmt::format(
+        "- **Central vortex.** The surface has a hill of height {} and radius {} in the middle of the square (`--lift "
+        "bump:{},{},0.5,0.5,{},{}`), steeper than the plane near its flank, so its contour lines close around it and the "
+        "ramp's motion along them circles it, as the paper's Figure 9 shows: the {} particles starting within R / 2 of "
+        "its centre turn {} times about it on average (counter-clockwise positive) while the stream passes around it.\n",
+        format_real(c.bump_height, 4), format_real(c.bump_radius, 4), format_real(c.bump_height, 6),
+        format_real(c.bump_radius, 6), format_real(c.slope_x, 6), format_real(c.slope_y, 6), r.centre_particles,
+        format_real(r.centre_turns, 3));
   md += fmt::format("\nFiles: `{}.csv` (these numbers), `{}_traces.csv` (every trace point), `{}.png` (the traces over the "
                     "height field, lighter = lower; y up). Seconds measured on {}.\n",
                     n, n, n, r.machine);
@@ -236,13 +275,15 @@ std::string write_figure9(const Figure9Result& r) {
   const std::string n = c.name();
   std::string csv =
       "slope_x,slope_y,ramp,particles,time,steps,mean_dx,mean_dy,cov_xx,cov_xy,cov_yy,eigen_major,eigen_minor,"
-      "principal_angle_deg,principal_to_slope_deg,mean_to_slope_deg,rms_displacement,field_evaluations,seconds\n";
-  csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", format_real(c.slope_x),
+      "principal_angle_deg,principal_to_slope_deg,mean_to_slope_deg,rms_displacement,bump_height,bump_radius,centre_turns,"
+      "field_evaluations,seconds\n";
+  csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", format_real(c.slope_x),
                      format_real(c.slope_y), format_real(c.used_ramp()), r.particles(), format_real(c.time), c.steps,
                      format_real(r.mean_dx), format_real(r.mean_dy), format_real(r.cov_xx), format_real(r.cov_xy),
                      format_real(r.cov_yy), format_real(r.eigen_major), format_real(r.eigen_minor),
                      format_real(r.principal_angle), format_real(r.principal_to_slope), format_real(r.mean_to_slope),
-                     format_real(r.rms_displacement), r.field_evaluations, format_real(r.seconds));
+                     format_real(r.rms_displacement), format_real(c.bump_height), format_real(c.bump_radius),
+                     format_real(r.centre_turns), r.field_evaluations, format_real(r.seconds));
   std::string traces = "particle,point,x0,x1\n";
   const int points = c.segments + 1;
   for (int p = 0; p < r.particles(); ++p)

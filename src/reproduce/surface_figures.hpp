@@ -5,10 +5,12 @@
 //            tangent to every sphere, field/constraint.hpp on_sphere), RK4 at 32 and 128 steps with and
 //            without projection (Gauss-Newton reprojection) against 2048 RK4 steps.
 //   figure7: a ring pattern in the unit square warped along 2D DFVN bounded by the disc (the inscribed
-//            ball, Eq. 13): how many samples leave the disc, and the radial profile outside it.
-//   figure9 / figure10: particle traces over the plane h = SX x + SY y (--lift plane), with (figure9)
-//            and without (figure10) the vertical ramp (--lift-ramp), as in the paper; the displacement covariance's
-//            principal direction against the slope direction.
+//            ball, Eq. 13): how many samples leave the disc, and the radial profile outside it; its 3D half (a
+//            textured ball, central slices) and the paper's own construction beside Eq. 13 in 2D and 3D.
+//   figure9 / figure10: particle traces over the plane h = SX x + SY y (--lift plane), with (figure9, on a slope
+//            with a hill in the middle, the paper's central vortex) and without (figure10) the vertical ramp
+//            (--lift-ramp), as in the paper; the displacement covariance's principal direction against the slope
+//            direction, and the turns about the hill.
 #pragma once
 
 #include <cstdint>
@@ -79,12 +81,28 @@ struct Figure7Config {
   double transition_width = 0.1; // Eq. 13's w, in length units (the disc's radius is 1/2)
   int rings = 8;                 // the pattern: 0.5 + 0.5 cos(2 pi rings r / R), R = 1/2 the disc's radius
   int bins = 32;                 // radial profile bins over r in [0, sqrt(2) / 2]
+  int width3d = 96;              // the 3D half: each central slice of the unit cube, width3d x width3d pixels
   NoiseBasis noise = kDefaultNoiseBasis;
   std::uint64_t seed = 1;
   int threads = 0;
   std::string out_dir = "out/figure7";
 
   void validate() const;
+};
+
+// One construction of Figure 7's confinement in one dimension (reproduce/figure7_3d.cpp): eq13 (the library's:
+// Eq. 13 replaces a function, Gauss-Newton reprojection) or paper (the paper's: the second vector interpolated
+// from e_z, in 3D from a second noise gradient, to the normal; RK4 alone).
+struct Figure7ConstructionRow {
+  int dimension = 2;
+  std::string construction;
+  std::int64_t inside = 0, left = 0;     // traces starting in the closed disc (ball), and those ending outside it
+  double max_end_radius_inside = 0.0;    // the largest end radius of an inside start
+  double max_radius_drift_outside = 0.0; // the largest | |x(t) - c| - |x(0) - c| | of an outside start
+  double zone_divergence_median = 0.0;   // |div c| / RMS |c| in the transition zone (central differences)
+  double zone_divergence_p95 = 0.0;
+  std::int64_t field_evaluations = 0;
+  double seconds = 0.0;
 };
 
 struct Figure7Result {
@@ -102,11 +120,21 @@ struct Figure7Result {
   std::int64_t field_evaluations = 0;
   double seconds = 0.0;
   std::string machine;
+  // Both constructions in 2D (eq13 first: the numbers above) and 3D, the 2D paper construction's warp, and the 3D
+  // half's central slices: source z, y, x = 1/2, then eq13's three, then paper's three.
+  std::vector<Figure7ConstructionRow> constructions;
+  FloatImage warped_paper;
+  std::vector<FloatImage> slices_3d;
   double share_left() const { return inside > 0 ? static_cast<double>(left) / static_cast<double>(inside) : 0.0; }
 };
 
 Figure7Result run_figure7(const Figure7Config& config, const FractionProgress& progress = {});
-// DIR/figure7.csv (one row), DIR/figure7_profile.csv, DIR/figure7.md, DIR/source.png, DIR/warped.png.
+// The constructions' comparison and the 3D half, into `result` (run_figure7 calls it after the 2D Eq. 13 run).
+void run_figure7_constructions(const Figure7Config& config, Figure7Result& result, const FractionProgress& progress = {});
+// DIR/figure7.csv (one row), DIR/figure7_profile.csv, DIR/figure7.md, DIR/source.png, DIR/warped.png, and the
+// constructions and the 3D half: DIR/figure7_constructions_3d.csv (a row per dimension and construction),
+// DIR/warped_paper.png (2D, the paper's construction) and DIR/slices_3d.png (rows: source, eq13, paper; columns:
+// the central slices z, y, x = 1/2 of the unit cube, the ball's sphere their largest circle).
 std::string write_figure7(const Figure7Result& result);
 std::vector<std::string> figure7_output_files();
 std::string figure7_markdown(const Figure7Result& result);
@@ -117,6 +145,10 @@ struct Figure9Config {
   bool ramp_figure = true;       // true: figure9 (the vertical ramp, as in the paper's Figure 9); false: figure10 (no ramp)
   double slope_x = 1.0, slope_y = 0.5;  // h = SX x + SY y, in length units
   double ramp = 1.0;             // figure9's --lift-ramp BETA (RMS-speed units per unit slope); unused by figure10
+  // figure9's hill (--bump H,R): h = SX x + SY y + H (1 - r^2 / R^2)^3 about the square's centre (r < R), the paper's
+  // surface with "a vortex in the center": where the hill is steeper than the plane its contour lines close, and
+  // the ramp's motion along them circles the hill. H = 0: the plane alone (figure10's surface).
+  double bump_height = 0.0, bump_radius = 0.25;
   int grid = 48;                 // K x K particles at the cell centres of the unit square
   double time = 0.25;            // about one noise cycle travelled at frequency 4
   int steps = 64;                // RK4 steps per trace, each followed by Gauss-Newton reprojection
@@ -143,6 +175,10 @@ struct Figure9Result {
   double principal_to_slope = 0.0;  // the angle between the principal direction and the slope direction, [0, 90]
   double mean_to_slope = 0.0;       // the angle between the mean displacement and the slope direction, [0, 180]
   double rms_displacement = 0.0;
+  // The mean number of turns (signed, counter-clockwise positive) that the particles starting within R / 2 of the
+  // hill's centre make about it (0 without a hill): the central vortex.
+  double centre_turns = 0.0;
+  std::int64_t centre_particles = 0;
   std::int64_t field_evaluations = 0;
   double seconds = 0.0;
   std::string machine;

@@ -93,11 +93,13 @@ FieldConstraint field_constraint(const CnjOptions& options) {
 }  // namespace
 
 FieldOptions cnj_field_options(const CnjOptions& options, double spacing) {
-  return FieldOptions{options.noise,     options.frequency / spacing,
-                      field_constraint(options), transition_width_for_spacing(options, spacing),
-                      options.bound,     options.domain == DomainKind::torus,
-                      options.field,     options.phase,
-                      options.transform};
+  FieldOptions field{options.noise,     options.frequency / spacing,
+                     field_constraint(options), transition_width_for_spacing(options, spacing),
+                     options.bound,     options.domain == DomainKind::torus,
+                     options.field,     options.phase,
+                     options.transform};
+  field.flow = options.flow;
+  return field;
 }
 
 LatticeSpec cnj_lattice(const LatticeSpec& lattice, DomainKind domain) {

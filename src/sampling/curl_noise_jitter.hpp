@@ -55,6 +55,9 @@ struct CnjOptions {
   double phase = 0.0;
   // Where the field reads its noise (FieldOptions::transform: --stretch, --time; field/field_transform.hpp).
   NoiseTransform transform{};
+  // Bridson's toolbox on the field (FieldOptions::flow: --octaves, --amplitude, --viscous, --body, --vortex;
+  // field/bridson_flow.hpp); the default is the field without it.
+  FlowOptions flow{};
   // A move of 2^20 lattice spacings is far past any useful jitter (a point moved more than K
   // spacings has left the unit cube unless its streamline loops); the bound keeps every
   // displacement, and the sum of their squares, far from overflow.

@@ -58,8 +58,9 @@ run integration reproduce integration --dims 3 --realizations 2 --max-points 512
 run figure8 reproduce figure8 --frames 20 --grid-2d 6 --grid-3d 3 --drop-margin 1 --out r5 -q
 run constructions reproduce constructions --divergence-points 1000 --speed-points 200 --trace-starts 4 --escape-starts 20 --out rc -q
 run figure6 reproduce figure6 --width 16 --out r6 -q
-run figure7 reproduce figure7 --width 24 --rk4-steps 8 --out r7 -q
+run figure7 reproduce figure7 --width 24 --rk4-steps 8 --width-3d 12 --out r7 -q
 run figure10 reproduce figure10 --grid 4 --rk4-steps 8 --segments 4 --image 32 --out r10 -q
+run bridson reproduce bridson --grid 3 --trace-steps 8 --image 32 --check-points 200 --out rb -q
 # animate: frames.csv and trails.csv, conformant and drop.
 run animate animate --dim 2 --grid 6 --frames 30 --out a1 -q
 run animate_drop animate --dim 3 --grid 3 --lattice bcc --frames 30 --domain-mode drop --drop-margin 1 --out a2 -q
@@ -70,7 +71,8 @@ for f in all.csv all_rdf.csv pts/cnj.csv pts/lhs.csv count.csv realizations.csv 
   torus.csv stats.csv stats_sets.csv stats_side.csv stats_spectrum.csv spectrum.csv spectrum_radial.csv field.csv \
   field_cube.csv diagnose1.csv diagnose2.csv r1/table1.csv r1/rdf.csv r2/table2.csv r2/timeline.csv \
   r3/cnj_study.csv r3/cnj_study_jitter.csv r4/integration.csv r4/integration_slopes.csv r5/figure8_frames.csv \
-  r5/figure8_tracks.csv rc/constructions.csv rc/curl_obstacle.csv r6/figure6.csv r7/figure7.csv r7/figure7_profile.csv r10/figure10.csv r10/figure10_traces.csv \
+  r5/figure8_tracks.csv rc/constructions.csv rc/curl_obstacle.csv r6/figure6.csv r7/figure7.csv r7/figure7_profile.csv r7/figure7_constructions_3d.csv r10/figure10.csv r10/figure10_traces.csv \
+  rb/bridson_checks.csv rb/bridson_octaves.csv rb/wake_traces.csv rb/ring_traces.csv \
   a1/frames.csv a1/trails.csv a2/frames.csv a2/trails.csv; do
   [[ -s $f ]] && ok || bad "$f not written"
 done

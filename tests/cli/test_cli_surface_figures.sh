@@ -34,8 +34,8 @@ grep -q -- "--width 32 --trace-time 0.5" "$work/f6/figure6.md" && ok || bad "fig
 ! grep -q "| ---" "$work/f6.txt" && ok || bad "figure6 printed Markdown"
 
 # ---- figure7: the disc ----
-"$bin" reproduce figure7 --width 48 --rk4-steps 16 --out "$work/f7" -q >/dev/null 2>"$work/err" && ok || bad "figure7: $(cat "$work/err")"
-for f in figure7.csv figure7_profile.csv figure7.md; do [[ -s $work/f7/$f ]] && ok || bad "figure7 wrote no $f"; done
+"$bin" reproduce figure7 --width 48 --rk4-steps 16 --width-3d 24 --out "$work/f7" -q >/dev/null 2>"$work/err" && ok || bad "figure7: $(cat "$work/err")"
+for f in figure7.csv figure7_profile.csv figure7.md figure7_constructions_3d.csv; do [[ -s $work/f7/$f ]] && ok || bad "figure7 wrote no $f"; done
 for f in source warped; do is_png "$work/f7/$f.png" && ok || bad "figure7 wrote no $f.png"; done
 inside=$(csv_value "$work/f7/figure7.csv" 1 samples_inside)
 [[ $(csv_value "$work/f7/figure7.csv" 1 left) == 0 ]] && ok || bad "figure7: samples left the disc: $(cat "$work/f7/figure7.csv")"
@@ -44,11 +44,26 @@ holds "$(csv_value "$work/f7/figure7.csv" 1 max_end_radius_inside) <= 0.5" && ok
 holds "$(csv_value "$work/f7/figure7.csv" 1 max_change_outside) <= 1e-6" && ok || bad "figure7: the pattern changed outside the disc"
 holds "$(csv_value "$work/f7/figure7.csv" 1 mean_change_inside) > 0.05" && ok || bad "figure7: the warp did not move the rings inside"
 [[ $(grep -c ",outside," "$work/f7/figure7_profile.csv") -ge 5 ]] && ok || bad "figure7_profile.csv has no bins outside"
+# figure7's 3D half and the paper's construction beside Eq. 13 (issue 44): both confine in 2D and 3D; Eq. 13's field
+# is divergence-free in the transition zone, the paper's interpolated vector is not.
+for f in warped_paper slices_3d; do is_png "$work/f7/$f.png" && ok || bad "figure7 wrote no $f.png"; done
+rows=$work/f7/figure7_constructions_3d.csv
+[[ $(grep -c . "$rows") -eq 5 ]] && ok || bad "figure7_constructions_3d.csv: header + 4 rows: $(cat "$rows")"
+/usr/bin/python3 - "$rows" <<'PY' && ok || bad "figure7 constructions: $(cat "$rows")"
+import csv, sys
+rows = {(r["dimension"], r["construction"]): r for r in csv.DictReader(open(sys.argv[1]))}
+for n in ("2", "3"):
+    e, p = rows[n, "eq13"], rows[n, "paper"]
+    assert int(e["left"]) == 0 and int(p["left"]) == 0 and int(e["samples_inside"]) > 100, (e, p)
+    assert float(e["zone_divergence_median"]) < 1e-4 < 1e-2 < float(p["zone_divergence_median"]), (e, p)
+    assert float(e["max_radius_drift_outside"]) < 1e-9, e
+PY
+grep -q "The paper's construction beside Eq. 13" "$work/f7/figure7.md" && ok || bad "figure7.md lacks the constructions"
 
 # ---- figure9 / figure10: the slope, a steep one (gradient covariance ratio 1 + 9 = 10) ----
 "$bin" reproduce figure10 --slope 3,0 --grid 24 --rk4-steps 16 --segments 8 --image 64 --out "$work/f10" -q >/dev/null 2>"$work/err" \
   && ok || bad "figure10: $(cat "$work/err")"
-"$bin" reproduce figure9 --slope 3,0 --lift-ramp 1 --grid 24 --rk4-steps 16 --segments 8 --image 64 --out "$work/f9" -q \
+"$bin" reproduce figure9 --slope 3,0 --lift-ramp 1 --bump 0,0.25 --grid 24 --rk4-steps 16 --segments 8 --image 64 --out "$work/f9" -q \
   >/dev/null 2>"$work/err" && ok || bad "figure9: $(cat "$work/err")"
 for n in 9 10; do
   for f in figure$n.csv figure${n}_traces.csv figure$n.md; do [[ -s $work/f$n/$f ]] && ok || bad "figure$n wrote no $f"; done
@@ -90,4 +105,12 @@ expect_error "figure10 steps not a multiple" "" "rk4-steps" reproduce figure10 -
 expect_error "figure6 bad time" "" "trace-time" reproduce figure6 --trace-time -1 --out "$work/bad6b"
 [[ ! -e $work/bad6b ]] && ok || bad "a refused figure6 made its folder"
 
+# figure9's default surface: the slope along x with the hill in the middle (issue 44): its particles near the centre
+# circle the hill (the paper's central vortex), those of the plane alone do not.
+"$bin" reproduce figure9 --grid 24 --rk4-steps 32 --segments 16 --image 64 --out "$work/f9h" -q >/dev/null 2>"$work/err" &&
+  ok || bad "figure9 (default surface): $(cat "$work/err")"
+turns=$(csv_value "$work/f9h/figure9.csv" 1 centre_turns)
+holds "abs($turns) > 0.3" && ok || bad "figure9: the particles by the hill turn $turns times about it"
+[[ $(csv_value "$work/f9/figure9.csv" 1 centre_turns) == 0.0 ]] && ok || bad "figure9 without a hill counts turns"
+grep -q "Central vortex" "$work/f9h/figure9.md" && ok || bad "figure9.md does not read the central vortex"
 finish test_cli_surface_figures

@@ -47,11 +47,20 @@ SHARED = {
     "--phase": ["noise phase alpha in radians", "0 is the field without a phase, bit for bit"],
     "--stretch": ["stretch the noise along a direction, u:s", "f_i(a x) with a = i + (s - 1) u u^t"],
     "--time": ["time as an extra noise dimension", "in the units of x"],
-    "--lift": ["lift the noise onto a surface z = h(x)", "plane:sx,sy", "bump:h,r[,cx,cy]"],
+    "--lift": ["lift the noise onto a surface z = h(x)", "plane:sx,sy", "bump:h,r[,cx,cy[,sx,sy]]"],
     "--lift-ramp": ["the vertical ramp of the paper's figure 9"],
     "--steer-dir": ["with --noise steerable: the direction u the noise is elongated along"],
     "--steer-field": ["with --noise steerable: constant (--steer-dir) or circular"],
+    "--steer-quality": ["with --noise steerable: seed 002's quality q in 0..n"],
+    "--steer-image": ["with --noise steerable in 2d: steer along an image's direction field"],
     "--steer-k": ["with --noise steerable: the metric's eigenvalue k along u, in (0, 1]"],
+    "--octaves": ["octaves k of the noise (bridson et al. 2007, section 2.2)", "1 is the field without"],
+    "--octave-gain": ["with --octaves: the velocity ratio g from one octave to the next", "kolmogorov's 2^(-1/3)"],
+    "--amplitude": ["modulate the potential by a(x)", "constant:a, height:z0,z1", "obstacles:d"],
+    "--viscous": ["no-slip solids (bridson section 2.4)"],
+    "--body": ["a moving rigid sphere", "sphere:cx,cy,cz,r,vx,vy,vz,wx,wy,wz"],
+    "--vortex": ["particle:cx,cy,cz,wx,wy,wz,r", "ring:cx,cy,cz,nx,ny,nz,rr,w,r"],
+    "--rotation": ["how --noise simplex's gradients turn with --phase in 3d", "two-vector", "fast", "well-behaved"],
     "--frequency": ["cycles per unit length"],
     "--cycles-per-spacing": ["cycles per lattice spacing"],
     "--steps": ["cnj integration steps m"],
@@ -143,7 +152,7 @@ check(help_all.returncode == 0, "--help-all exits 0")
 parts = sections(help_all.stdout)
 expected = ["dfvn-sample " + s for s in ["sample", "field", "reproduce", "reproduce table1", "reproduce table2",
                                           "reproduce cnj-study", "reproduce integration", "reproduce figure8", "reproduce constructions", "reproduce figure6",
-                                          "reproduce figure7", "reproduce figure9", "reproduce figure10", "stats",
+                                          "reproduce figure7", "reproduce figure9", "reproduce figure10", "reproduce bridson", "stats",
                                           "animate"]]
 check(sorted(parts) == sorted(expected), f"--help-all has a section per subcommand: {sorted(parts)}")
 
