@@ -22,11 +22,11 @@ struct StatisticSource {
 };
 
 const StatisticSource kSources[] = {
-    {"nn_min", "the smallest nearest-neighbour distance (the closest pair)",
+    {"nn_min", "The smallest nearest-neighbour distance (the closest pair)",
      [](const NearestNeighbourSummary& s) { return s.min; }},
-    {"nn_q01", "the 1% quantile of the nearest-neighbour distances (the closest pairs but a few)",
+    {"nn_q01", "The 1% quantile of the nearest-neighbour distances (the closest pairs but a few)",
      [](const NearestNeighbourSummary& s) { return s.q01; }},
-    {"nn_median_scaled", "the median nearest-neighbour distance in mean spacings (density removed)",
+    {"nn_median_scaled", "The median nearest-neighbour distance in mean spacings (the density removed)",
      [](const NearestNeighbourSummary& s) { return s.median_scaled; }},
 };
 
@@ -125,13 +125,13 @@ std::string verdict_markdown(const SampleConfig& config, const std::vector<Sampl
       realizations == 1 ? "" : "s",
       realizations == 1 ? std::to_string(runs.front().seed)
                         : fmt::format("{}..{}", runs.front().seed, runs.back().seed));
-  md += "Every statistic below is a nearest-neighbour distance: larger means the points keep further apart, the\n"
+  md += "Every statistic below is a nearest-neighbour distance: larger means the points keep further apart, the "
         "blue-noise property Table 1 of the paper compares. ";
   md += realizations > 1
-            ? fmt::format("Values are means over the {} realizations with their standard error (sd / sqrt({})); a\n"
+            ? fmt::format("Values are means over the {} realizations with their standard error (sd / sqrt({})); a "
                           "difference counts when it exceeds two standard errors of the difference.\n\n",
                           realizations, realizations)
-            : "With one realization the seed-to-seed spread is unknown: run --realizations R (R >= 2) to tell\n"
+            : "With one realization the seed-to-seed spread is unknown: run --realizations R (R >= 2) to tell "
               "whether a difference exceeds it.\n\n";
   const bool has_matched = find(statistics.front(), Method::jitter_matched).has_value();
   const bool has_pds = find(statistics.front(), Method::pds).has_value();
