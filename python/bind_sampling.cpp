@@ -11,6 +11,7 @@
 
 #include "dfvn/core/dimension.hpp"
 #include "dfvn/experiment/experiment.hpp"
+#include "checked_def.hpp"
 #include "numpy_points.hpp"
 
 namespace dfvn::python {
@@ -179,7 +180,7 @@ void bind_sampling(py::module_& module) {
   };
   const char* doc = "Internal: one point set as `dfvn-sample --points` makes it (python/dfvn/qmc.py calls it).";
   for (const auto& [name, f] : {std::pair{"_generate", &generate}, std::pair{"_plan", &plan}}) {
-    module.def(name, call(f), "method"_a, "d"_a, py::kw_only(), "grid"_a = py::none(), "n"_a = py::none(),
+    def_checked(module, name, call(f), "method"_a, "d"_a, py::kw_only(), "grid"_a = py::none(), "n"_a = py::none(),
                "seed"_a = 1, "protocol"_a = "unit", "scramble"_a = true, "radius"_a = 0.0, "ncandidates"_a = 30,
                "noise"_a = std::string(to_string(cnj.noise)), "cycles_per_spacing"_a = cnj.frequency,
                "step_scale"_a = cnj.step_scale, "integrator"_a = std::string(to_string(cnj.trace.integrator)),

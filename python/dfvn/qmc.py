@@ -64,6 +64,13 @@ def _count(value, name, minimum):
     return int(value)
 
 
+def _real(value, name):
+    """A float from a real number (TypeError naming `name` for a str, None or a list, whose float() would not)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must be a real number, not {type(value).__name__}")
+    return float(value)
+
+
 def _dimension(d, lo, hi, name="d"):
     d = _count(d, name, 1)
     if not lo <= d <= hi:
@@ -224,7 +231,7 @@ class _SetEngine(QMCEngine):
     def __init__(self, d, *, seed=None, protocol="unit", threads=0, max_memory_gib=0.0, **options):
         super().__init__(_dimension(d, _MIN_D, _MAX_D), seed=seed, threads=threads)
         self.protocol = protocol
-        self.max_memory_gib = float(max_memory_gib)
+        self.max_memory_gib = _real(max_memory_gib, "max_memory_gib")
         self._options = options
 
     def _set_seed(self):
@@ -310,10 +317,11 @@ class CNJ(_SetEngine):
                  field=_DEFAULTS["field"], phase=0.0, stretch=None, time=None, **refused):
         _refuse(self._name, refused)
         super().__init__(d, seed=seed, protocol=protocol, threads=threads, max_memory_gib=max_memory_gib,
-                         noise=noise, cycles_per_spacing=float(cycles_per_spacing), step_scale=float(step_scale),
+                         noise=noise, cycles_per_spacing=_real(cycles_per_spacing, "cycles_per_spacing"),
+                         step_scale=_real(step_scale, "step_scale"),
                          integrator=integrator, reprojection=reprojection, steps=_count(steps, "steps", -(1 << 31)),
-                         domain=domain, domain_mode=domain_mode, bound=bound, field=field, phase=float(phase),
-                         stretch=_stretch_spec(stretch), time=None if time is None else float(time))
+                         domain=domain, domain_mode=domain_mode, bound=bound, field=field, phase=_real(phase, "phase"),
+                         stretch=_stretch_spec(stretch), time=None if time is None else _real(time, "time"))
 
     def _why_requested(self, requested, k):
         if self._options["domain"] == "ball":
@@ -370,7 +378,7 @@ class PoissonDisk(_SetEngine):
                  **refused):
         _refuse(self._name, refused)
         super().__init__(d, seed=seed, protocol=protocol, threads=threads, max_memory_gib=max_memory_gib,
-                         radius=float(radius), ncandidates=_count(ncandidates, "ncandidates", -(1 << 31)))
+                         radius=_real(radius, "radius"), ncandidates=_count(ncandidates, "ncandidates", -(1 << 31)))
 
     def _why_fewer(self, missing, saturated, radius):
         return f"Poisson disk sampling saturated at radius {radius:g}; a lower radius gives more"
@@ -433,7 +441,8 @@ def sample(method, dim, *, grid=None, n=None, seed=1, protocol="unit", scramble=
     engine = ENGINES[method]
     cnj = dict(noise=noise, cycles_per_spacing=cycles_per_spacing, step_scale=step_scale, integrator=integrator,
                reprojection=reprojection, steps=steps, domain=domain, domain_mode=domain_mode, bound=bound, field=field,
-               phase=float(phase), stretch=_stretch_spec(stretch), time=None if time is None else float(time))
+               phase=_real(phase, "phase"), stretch=_stretch_spec(stretch),
+               time=None if time is None else _real(time, "time"))
     pds = dict(radius=radius, ncandidates=ncandidates)
     if issubclass(engine, _Sequence):
         # The count and the domain under the protocol (Sobol under 'paper' lives on [0, 0.1 K]^dim);
