@@ -123,6 +123,13 @@ EOF
 grep -q "phase 1e+17 (.* modulo 2 pi) + k \* 0.05 rad" "$work/phase.txt" && ok || bad "animate --phase 1e17 summary: $(head -1 "$work/phase.txt")"
 expect_error "animate phase step 1e-310" "" 'phase step must be in \[2\^-30, 2 pi\] = \[9\.31323e-10, 6\.28319\] radians per frame, got 1e-310' \
   animate --grid 4 --frames 2 --phase-step 1e-310 --out "$work/never"
+# stats --periodic in a box of side 1e300 around points of [0, 1]: the two scales went back and forth for
+# ever (a stack overflow, SIGSEGV); one scale now: refused where the distances cannot be resolved, exact
+# where they can.
+expect_error "periodic statistics in a box of side 1e300" "" "closer than 2\^-510" stats --input "$work/lift.csv" --periodic --domain-side 1e300
+"$bin" stats --input "$work/lift.csv" --periodic --domain-side 1e100 -q -o "$work/side.csv" 2>"$work/err" && ok ||
+  bad "periodic statistics in a box of side 1e100: $(cat "$work/err")"
+expect_finite "periodic statistics in a box of side 1e100" "$work/side.csv"
 # Directions of extreme length: the field of U is the field of U / |U| (byte for byte when U is a power of
 # two times the unit direction's U: 2^-1000, 2^1000, 2^-1060 (subnormal), the smallest double; within
 # 1e-12 for 1e-300 and 1e300, whose scaling rounds).

@@ -85,3 +85,14 @@ def test_memory_that_cannot_be_had_is_a_memory_error_with_its_size():
         dfvn.Random(2, seed=1).random(2 ** 50)
     with pytest.raises(MemoryError, match=r"^out of memory: more elements than an array can hold"):  # not max_size()
         dfvn.Random(8, seed=1).random(2 ** 60)
+
+
+@pytest.mark.parametrize("periodic", [False, True])
+def test_statistics_of_points_in_a_corner_of_a_huge_domain_end_cleanly(periodic):
+    # The domain's scale and the coordinates' went back and forth for ever (a stack overflow, SIGSEGV).
+    r, g = dfvn.rdf(POINTS, domain_side=1e300, periodic=periodic)
+    assert np.isfinite(r).all() and np.isfinite(g).all()
+    if periodic:
+        with pytest.raises(ValueError, match="closer than 2\\^-510"):
+            dfvn.nn_stats(POINTS, domain_side=1e300, periodic=True)
+    assert dfvn.nn_stats(POINTS, domain_side=1e100, periodic=periodic)["points"] == 3
