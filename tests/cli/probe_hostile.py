@@ -170,6 +170,81 @@ def cli_cases():
     for v in ["1e-300,1e-300", "1e300,1e300", "0,0", "nan,1", "1", "1,2,3"]:
         add(f"reproduce figure9 --slope {v!r}", ["reproduce", "figure9", "--out", "{out}/r", "-q"] + small["figure9"] +
             ["--slope", v])
+    # Names and combinations of the newer options: curl noise, bitangent (simplex in 3D), steering, phase, time,
+    # stretch, lift, obstacles, bounds, the torus and the sphere, each where it applies and where it does not.
+    names = ["", "x", "simplex", "turning-bands", "quintic-gradient", "simplex-separate", "steerable", "curl", "dfvn",
+             "none", "newton", "gauss-newton", "euler", "rk4", "eq13", "ramp", "torus", "cube", "ball", "free", "drop",
+             "conformant", "circular", "constant", "bcc", "cubic", "SIMPLEX", "simplex,curl"]
+    for v in names:
+        for opt in ["--noise", "--field", "--reproject", "--integrator", "--domain", "--bound", "--domain-mode"]:
+            add(f"sample {opt} {v!r}", sample + ["--dim", "3", opt, v])
+        for opt in ["--noise", "--field", "--domain", "--bound"]:
+            add(f"field {opt} {v!r}", ["field", "--dim", "3", "--input", "{in3}", "-o", "{out}/f.csv", opt, v])
+        for opt in ["--noise", "--domain", "--bound", "--domain-mode", "--lattice"]:
+            add(f"animate {opt} {v!r}", animate + [opt, v], nan_ok=["frames.npy"])
+        add(f"sample --steer-field {v!r}", sample + ["--noise", "steerable", "--steer-field", v])
+    field3 = ["field", "--dim", "3", "--input", "{in3}", "-o", "{out}/f.csv"]
+    combos = [
+        sample + ["--dim", "4", "--field", "curl"], sample + ["--field", "curl", "--domain", "cube"],
+        sample + ["--field", "curl", "--domain-mode", "drop"], sample + ["--field", "curl", "--reproject", "newton"],
+        sample + ["--dim", "3", "--field", "curl", "--on", "sphere"], sample + ["--dim", "3", "--on", "sphere", "--domain", "cube"],
+        sample + ["--dim", "3", "--on", "sphere", "--bound", "ramp"], sample + ["--dim", "2", "--on", "sphere"],
+        sample + ["--dim", "3", "--on", "sphere", "--noise", "steerable", "--steer-dir", "1,0,0"],
+        sample + ["--dim", "3", "--on", "sphere", "--stretch", "1,0,0:2"], sample + ["--dim", "3", "--on", "sphere", "--time", "1"],
+        sample + ["--dim", "3", "--on", "sphere", "--phase", "1e300"], sample + ["--dim", "8", "--time", "1"],
+        sample + ["--stretch", "1,0:2"], sample + ["--domain", "cube", "--stretch", "1,0:2", "--time", "0.5"],
+        sample + ["--domain", "cube", "--lift", "plane:1,0", "--time", "0.5"], sample + ["--dim", "3", "--lift", "plane:1,0"],
+        sample + ["--noise", "steerable"], sample + ["--noise", "steerable", "--steer-dir", "1,0", "--steer-field", "circular"],
+        sample + ["--noise", "steerable", "--steer-field", "circular"], sample + ["--dim", "5", "--noise", "steerable",
+        "--steer-field", "circular"], sample + ["--dim", "4", "--noise", "steerable", "--steer-dir", "1,0,0,0", "--steer-k",
+        "0.99999"], sample + ["--noise", "steerable", "--steer-dir", "1,0", "--stretch", "1,0:2"],
+        sample + ["--steer-dir", "1,0"], sample + ["--steer-k", "0.5"], sample + ["--domain", "torus", "--noise", "simplex"],
+        sample + ["--domain", "torus", "--lift", "plane:1,0"], sample + ["--domain", "torus", "--bound", "ramp"],
+        sample + ["--domain", "ball", "--boundary-spacings", "0.5", "--bound", "ramp", "--noise", "simplex"],
+        sample + ["--domain", "ball", "--rdf", "{out}/r.csv"], sample + ["--domain", "ball", "--periodic"],
+        sample + ["--domain", "ball", "--stream"], sample + ["--methods", "pds", "--stream"],
+        sample + ["--methods", "cnj", "--stream", "--slabs", "3"], sample + ["--methods", "cnj", "--stream", "--sets", "2"],
+        sample + ["--methods", "cnj", "--stream", "--domain-mode", "drop", "--points", "-", "--format", "npy"],
+        sample + ["--methods", "cnj", "--stream", "--periodic", "--rdf", "{out}/r.csv", "--rdf-max", "1e-300"],
+        sample + ["--methods", "cnj", "--stream", "--max-memory", "1e-9"], sample + ["--lift-ramp", "1"],
+        sample + ["--phase", "1e300", "--time", "1e300"], sample + ["--phase", "-1e308", "--domain", "cube"],
+        sample + ["--time", "1e15"], sample + ["--time", "-1e16"], sample + ["--cycles-per-spacing", "1e15", "--grid", "2"],
+        field + ["--domain", "torus", "--stretch", "1,0:2"], field + ["--domain", "torus", "--noise", "simplex"],
+        field + ["--domain", "torus", "--obstacle", "sphere:0.5,0.5,0.1"], field + ["--obstacle", "sphere:0.5,0.5,0.1"],
+        field + ["--domain", "cube", "--obstacle", "sphere:0.5,0.5,0.1", "--obstacle", "sphere:0.5,0.5,0.1"],
+        field + ["--domain", "cube", "--obstacle", "sphere:0.3,0.3,0.05", "--obstacle", "sphere:0.7,0.7,0.05"],
+        field + ["--domain", "ball", "--obstacle", "sphere:0.5,0.5,0.3"], field + ["--domain", "cube", "--boundary-width",
+        "1e-300", "--obstacle", "sphere:0.5,0.5,0.1"], field + ["--domain", "cube", "--field", "curl"],
+        field + ["--domain", "cube", "--field", "curl", "--bound", "ramp", "--obstacle", "sphere:0.5,0.5,1e-300"],
+        field3 + ["--domain", "ball", "--field", "curl", "--bound", "ramp", "--obstacle", "sphere:0.5,0.5,0.5,0.1"],
+        field3 + ["--field", "curl", "--domain", "torus"], field3 + ["--field", "curl", "--time", "1"],
+        field3 + ["--field", "curl", "--stretch", "1e-300,0,0:1e6"], field3 + ["--field", "curl", "--phase", "1e308"],
+        field3 + ["--noise", "simplex", "--phase", "3.14159", "--time", "-1e15"],
+        field3 + ["--noise", "steerable", "--steer-field", "circular", "--steer-k", "1e-300"],
+        field3 + ["--noise", "steerable", "--steer-dir", "0,0,1e-320"], field3 + ["--dim", "2"],
+        ["field", "--dim", "8", "--input", "{in3}"], field + ["--time", "1", "--lift", "plane:1,0"],
+        field + ["--lift", "bump:1e15,1", "--lift-ramp", "1e15"], field + ["--lift", "bump:-1e15,1,0.1,0.2"],
+        field + ["--lift", "plane:0,0", "--lift-ramp", "1e15"], field + ["--frequency", "1e15", "--lift", "plane:1,1"],
+        field + ["--diagnose"], field[:2] + ["--diagnose", "--diagnose-points", "10", "--lift", "plane:1,0", "-o", "{out}/d.csv"],
+        field[:2] + ["--diagnose", "--diagnose-points", "10", "--obstacle", "sphere:0.5,0.5,0.1", "--domain", "cube",
+                     "-o", "{out}/d.csv"],
+        field[:2] + ["--diagnose", "--diagnose-points", "10", "--periods", "1e9", "--frequency", "1e-15", "-o", "{out}/d.csv"],
+        animate + ["--domain", "torus"], animate + ["--field", "curl"], animate + ["--lattice", "bcc", "--domain", "ball"],
+        animate + ["--frames", "100000", "--grid", "1024"], animate + ["--domain-mode", "drop", "--drop-margin", "100"],
+        animate + ["--phase", "1e308", "--phase-step", "6.283185307179586"], animate + ["--phase", "-1e308"],
+        animate + ["--phase-step", "6.2832"], animate + ["--noise", "steerable", "--steer-field", "circular"],
+        animate + ["--dim", "8", "--grid", "2", "--domain", "cube", "--frames", "2"],
+        stats + ["--spectrum", "{out}/sp", "--dim", "2"], stats + ["--format", "bin"], stats + ["--format", "npy"],
+        stats + ["--domain-side", "1e-300"], stats + ["--periodic", "--domain-side", "1e300"],
+        stats + ["--rdf", "{out}/r.csv", "--rdf-max", "1e300"], stats + ["--discrepancy", "--periodic"],
+        ["stats", "--input", "-", "--format", "csv", "-q", "-o", "{out}/s.csv"],
+    ]
+    for side in ["1e300", "1e100", "1e20", "1e-20", "1e-300"]:
+        for extra in [["--periodic"], ["--rdf", "{out}/r.csv"], ["--periodic", "--rdf", "{out}/r.csv"], ["--discrepancy"],
+                      ["--spectrum", "{out}/sp"]]:
+            combos.append(stats + ["--domain-side", side] + extra)
+    for argv in combos:
+        add("combination " + " ".join(argv[:1] + argv[9:] if argv[0] == "sample" else argv), argv, nan_ok=["frames.npy"])
     # --stream at sizes that cannot fit in $TMPDIR, and its bad values
     add("stream 2^40 points", ["sample", "--dim", "2", "-n", "1099511627776", "--methods", "jitter", "--stream", "-q",
                                "-o", "{out}/s.csv"])
@@ -358,6 +433,12 @@ def python_cases(files):
     for kw in ["domain_side", "knn", "threads", "periodic"]:
         for v in PY_VALUES:
             add(f"nn_stats({kw}={v!r})", dfvn.nn_stats, dict(points=pts2, **{kw: v}), kw)
+    for side in [1e300, 1e100, 1e-300]:
+        # refused, if at all, for the points: their distances underflow at the domain's scale
+        add(f"nn_stats(domain_side={side}, periodic=True)", dfvn.nn_stats, dict(points=pts2, domain_side=side, periodic=True),
+            "points")
+        add(f"rdf(domain_side={side}, periodic=True)", dfvn.rdf, dict(points=pts2, domain_side=side, periodic=True),
+            "domain_side")
     for kw in ["domain_side", "r_max", "bins", "max_queries", "seed"]:
         for v in PY_VALUES:
             add(f"rdf({kw}={v!r})", dfvn.rdf, dict(points=pts2, **{kw: v}), kw)
