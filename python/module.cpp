@@ -41,7 +41,8 @@ std::string python_message(std::string message) {
       {"CNJ steps must be", "steps must be"},
       {"obstacle 'sphere", "obstacles: 'sphere"},
       {"obstacle sphere", "obstacles: sphere"},
-      {"unknown KD-tree backend", "knn: unknown KD-tree backend"}};
+      {"unknown KD-tree backend", "knn: unknown KD-tree backend"},
+      {"unknown discrepancy", "method: unknown discrepancy"}};
   for (const auto& [phrase, replacement] : kPhrases)
     if (const std::size_t at = message.find(phrase); at != std::string::npos) message.replace(at, phrase.size(), replacement);
   // "point 3, column 2: ..." and "point 0 (0-based) has ...": a row of the argument `points`.

@@ -183,6 +183,8 @@ class Sobol(_Sequence):
 
         m: the log2 of the count (no default)."""
         m = _count(m, "m", 0)
+        if m > 32:  # before 2 ** m: m = 2**63 computed that power for ever
+            raise ValueError(f"m must be at most 32 (Sobol supports at most 2^32 points), got {m}")
         n = 2 ** m
         total = self.num_generated + n
         if total & (total - 1) != 0:

@@ -167,6 +167,34 @@ def cli_cases():
                     i = argv.index(opt)
                     del argv[i:i + 2]
                 add(f"reproduce {sub} {opt} {v!r}", argv + [opt, v])
+    # The reproductions' list and range options.
+    for sub, opt, values in [
+            ("table1", "--dims", ["", "2", "8", "3-", "-3", "7-3", "3,3", "3-7-9", "x", "1e308", "3,,4"]),
+            ("cnj-study", "--dims", ["2", "8", "7-3", "3,3", ""]),
+            ("cnj-study", "--noises", ["", "x", "steerable", "simplex,simplex", "simplex,"]),
+            ("cnj-study", "--cycles-per-spacing", ["0", "nan", "1e308", "-1", "1e-310", ""]),
+            ("cnj-study", "--step-scales", ["0", "nan", "1e308", "-1", ""]),
+            ("cnj-study", "--steps", ["0", "-1", "2000000", ""]),
+            ("cnj-study", "--lattice", ["", "x", "paper"]),
+            ("integration", "--dims", ["2", "8", "7-3", ""]),
+            ("integration", "--methods", ["", "x", "cnj,cnj", "pds,"]),
+            ("integration", "--max-points", ["0", "63", "16777217", "-1", ""]),
+            ("integration", "--realizations", ["1", "0", "100001"]),
+            ("table2", "--setting", ["", "x"]), ("table2", "--samples", ["0", "2", "81"]),
+            ("table2", "--second-width", ["1", "20001", "-1"]), ("table2", "--height", ["1", "20001"]),
+            ("figure8", "--grid-2d", ["1", "4097", "-1"]), ("figure8", "--grid-3d", ["1", "257"]),
+            ("figure8", "--lattice-3d", ["", "x"]), ("figure8", "--drop-margin", ["-1", "1001"]),
+            ("figure9", "--image", ["0", "-1", "100000000"]), ("figure9", "--rk4-steps", ["0", "3", "-1"]),
+            ("figure9", "--segments", ["0", "64", "-1"]), ("figure10", "--grid", ["0", "1", "100000"]),
+            ("figure6", "--noise", ["", "steerable", "x"]), ("figure7", "--rk4-steps", ["0", "-1"]),
+            ("constructions", "--frequency", ["0", "nan", "1e308"]), ("constructions", "--trace-time", ["0", "1e-13", "101"]),
+            ("constructions", "--divergence-points", ["99", "100000001"]), ("constructions", "--escape-starts", ["0"])]:
+        for v in values:
+            argv = ["reproduce", sub, "--out", "{out}/r", "-q"] + small[sub]
+            if opt in argv:
+                i = argv.index(opt)
+                del argv[i:i + 2]
+            add(f"reproduce {sub} {opt} {v!r}", argv + [opt, v])
     for v in ["1e-300,1e-300", "1e300,1e300", "0,0", "nan,1", "1", "1,2,3"]:
         add(f"reproduce figure9 --slope {v!r}", ["reproduce", "figure9", "--out", "{out}/r", "-q"] + small["figure9"] +
             ["--slope", v])
@@ -442,6 +470,16 @@ def python_cases(files):
     for kw in ["domain_side", "r_max", "bins", "max_queries", "seed"]:
         for v in PY_VALUES:
             add(f"rdf({kw}={v!r})", dfvn.rdf, dict(points=pts2, **{kw: v}), kw)
+    # The engines (python/dfvn/qmc.py): constructor keywords and their draws.
+    for kw in ["cycles_per_spacing", "step_scale", "phase", "time", "steps", "noise", "domain", "stretch", "seed"]:
+        for v in PY_VALUES:
+            add(f"CNJ({kw}={v!r}).random(grid=4)", lambda **k: dfvn.CNJ(2, **k).random(grid=4), {kw: v}, kw)
+    for v in PY_VALUES:
+        add(f"Sobol(2).random({v!r})", lambda n: dfvn.Sobol(2, seed=1).random(n), dict(n=v), "n")
+        add(f"Sobol(2).random_base2({v!r})", lambda m: dfvn.Sobol(2, seed=1).random_base2(m), dict(m=v), "m")
+        add(f"Random(2).fast_forward({v!r})", lambda n: dfvn.Random(2, seed=1).fast_forward(n), dict(n=v), "n")
+        add(f"Jitter({v!r})", lambda d: dfvn.Jitter(d, seed=1).random(grid=3), dict(d=v), "d")
+        add(f"discrepancy(method={v!r})", lambda method: dfvn.discrepancy(pts2, method=method), dict(method=v), "method")
     for points in [np.zeros((0, 2)), np.zeros((3, 1)), np.zeros((3, 9)), np.full((2, 2), np.nan), "x", None,
                    np.zeros((2, 2, 2)), [[1e308, 1e308]], np.zeros((3, 2), dtype=np.int64)]:
         add(f"field(points={getattr(points, 'shape', points)!r})", dfvn.field, dict(points=points), "points")

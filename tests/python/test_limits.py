@@ -96,3 +96,9 @@ def test_statistics_of_points_in_a_corner_of_a_huge_domain_end_cleanly(periodic)
         with pytest.raises(ValueError, match="closer than 2\\^-510"):
             dfvn.nn_stats(POINTS, domain_side=1e300, periodic=True)
     assert dfvn.nn_stats(POINTS, domain_side=1e100, periodic=periodic)["points"] == 3
+
+
+def test_random_base2_refuses_m_beyond_sobols_points_before_computing_two_to_the_m():
+    # 2 ** (2 ** 63) was computed first: a call that never returned.
+    with pytest.raises(ValueError, match=r"^m must be at most 32 \(Sobol supports at most 2\^32 points\), got 9223372036854775808$"):
+        dfvn.Sobol(2, seed=1).random_base2(2 ** 63)
