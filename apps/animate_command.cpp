@@ -51,7 +51,7 @@ struct AnimateCommand : Subcommand {
                                 dfvn::AnimationOptions::kMaxFrames))
         ->capture_default_str();
     cmd->add_option("--phase-step", options.phase_step,
-                    "Phase step DA in radians per frame, in (0, 2 pi]: the field turns by DA per frame, and a frame\n"
+                    "Phase step DA in radians per frame, in [2^-30, 2 pi]: the field turns by DA per frame, and a frame\n"
                     "lasts DA times the CNJ trace time")
         ->capture_default_str();
     add_phase_option(*cmd, options.start_phase);

@@ -16,6 +16,7 @@
 #include "dfvn/io/atomic_file.hpp"
 #include "dfvn/io/csv.hpp"
 #include "dfvn/io/field_csv.hpp"
+#include "dfvn/io/point_reader.hpp"
 
 #include "options.hpp"
 
@@ -80,7 +81,7 @@ struct FieldCommand : Subcommand {
     bound_options[1] = cmd->add_option("--boundary-width", boundary_width,
                     "With --domain cube or ball: the bound's transition width in length units, in (0, 1/4]")
         ->capture_default_str()
-        ->check(CLI::Range(std::nextafter(0.0, 1.0), 0.25));
+        ->check(real_in(0.0, 0.25, true, "(0, 1/4]"));
     cmd->add_option("--obstacle", obstacles,
                     "With --domain cube or ball: a spherical obstacle sphere:CX,CY[,CZ...],R (N centre coordinates\n"
                     "and a radius; repeatable; default none) that the field flows around: f_1 times Bridson's\n"
@@ -91,7 +92,7 @@ struct FieldCommand : Subcommand {
     bridson.add_to(*cmd);
     CLI::Option* input_option =
         cmd->add_option("--input", input, "Point file to read, CSV or whitespace-separated (default: standard input)")
-            ->check(CLI::ExistingFile);
+            ->type_name("FILE");  // a file that cannot be read is bad data, exit 1, said by the reader
     CLI::Option* diagnose_flag = cmd->add_flag(
         "--diagnose", diagnose,
         "Instead of reading points, measure the field on uniform random points and write one CSV row: RMS |c|,\n"
@@ -103,7 +104,7 @@ struct FieldCommand : Subcommand {
         ->check(CLI::Range(std::uint64_t{10}, std::uint64_t{100000000}));
     cmd->add_option("--periods", diagnosis.periods, "With --diagnose: the points fill [0, periods / F]^N")
         ->capture_default_str()
-        ->check(CLI::Range(1e-3, 1e9));
+        ->check(real_in(1e-3, 1e9));
     cmd->add_option("-o,--output", output,
                     "Main output: the CSV of points, field vectors and noise values (with --diagnose: the diagnosis\n"
                     "row), written whole or not at all ('-' = standard output)")
@@ -176,8 +177,9 @@ struct FieldCommand : Subcommand {
       if (input.empty()) {
         points = dfvn::read_points_text(std::cin, dimension);
       } else {
+        dfvn::check_readable_file(input);  // a missing file or a directory: one line, exit 1
         std::ifstream in(input);
-        if (!in) fail("cannot read " + input_name());
+        if (!in) fail(input_name() + ", cannot read the file");
         points = dfvn::read_points_text(in, dimension);
       }
     } catch (const dfvn::InputError& e) {

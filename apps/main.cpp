@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "dfvn/core/bulk_memory.hpp"
 #include "dfvn/core/message_text.hpp"
 #include "dfvn/io/atomic_file.hpp"
 #include "options.hpp"
@@ -167,8 +168,8 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     fail(with_safe_echoes(parse_error_message(app, e), given) + " (run with --help for the options)", 2);
-  } catch (const std::bad_alloc&) {  // the library names what it allocates where it can; this is the rest
-    fail("out of memory; try a smaller problem");
+  } catch (const std::bad_alloc& e) {  // the library names what it allocates where it can; this is the rest
+    fail(dynamic_cast<const dfvn::OutOfMemory*>(&e) ? e.what() : "out of memory; try a smaller problem");
   } catch (const std::exception& e) {
     fail(e.what());
   }

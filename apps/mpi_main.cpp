@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "dfvn/core/message_text.hpp"
 #include "dfvn/core/seeds.hpp"
 #include "dfvn/experiment/experiment.hpp"
 #include "dfvn/experiment/json_report.hpp"
@@ -267,6 +268,12 @@ int run(Options& o, int rank, MPI_Comm comm) {
   return 0;
 }
 
+// One line on stderr, as dfvn-sample's fail(): control bytes and newlines (CLI11 echoes values as given)
+// escaped.
+void report_error(const std::string& message) {
+  std::fprintf(stderr, "%s: error: %s\n", kMpiProgram, dfvn::escape_bytes(message, false).c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -295,10 +302,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     if (rank == 0) status = app.exit(e);
   } catch (const CLI::ParseError& e) {
-    if (rank == 0) std::fprintf(stderr, "%s: error: %s (run with --help for the options)\n", kMpiProgram, e.what());
+    if (rank == 0) report_error(std::string(e.what()) + " (run with --help for the options)");
     status = 2;
   } catch (const std::exception& e) {
-    if (rank == 0) std::fprintf(stderr, "%s: error: %s\n", kMpiProgram, e.what());
+    if (rank == 0) report_error(e.what());
     status = 1;
   }
   if (configured) {
@@ -307,7 +314,7 @@ int main(int argc, char** argv) {
     } catch (const dfvn::ReportedElsewhere&) {
       status = 1;
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "%s: error: %s\n", kMpiProgram, e.what());
+      report_error(e.what());
       status = 1;
     }
   }

@@ -52,6 +52,17 @@ bool read_unsigned(const std::string& text, std::uint64_t& value) {
 
 }  // namespace
 
+CLI::Validator real_in(double lo, double hi, bool open_below, const std::string& shown) {
+  const std::string range = !shown.empty() ? shown : fmt::format("{}{:g}, {:g}]", open_below ? "(" : "[", lo, hi);
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        double value = 0.0;
+        const bool ok = CLI::detail::lexical_cast(text, value) && (open_below ? value > lo : value >= lo) && value <= hi;
+        return ok ? std::string() : "must be a number in " + range + ", got " + dfvn::quote_for_message(text);
+      },
+      "FLOAT in " + range);
+}
+
 const CLI::Validator kPositiveFinite = finite_number(0.0, false, "POSITIVE");
 const CLI::Validator kNonNegativeFinite = finite_number(0.0, true, "NONNEGATIVE");
 
@@ -189,7 +200,7 @@ dfvn::SteerSpec SteerOptions::spec(const std::string& noise, int dimension) cons
     for (const std::string& part : CLI::detail::split(direction, ',')) {
       double value = 0.0;
       if (!CLI::detail::lexical_cast(CLI::detail::trim_copy(part), value))
-        fail("--steer-dir: '" + part + "' is not a number (U is N comma-separated components)");
+        fail("--steer-dir: " + dfvn::quote_for_message(part) + " is not a number (U is N comma-separated components)");
       s.direction.push_back(value);
     }
   }

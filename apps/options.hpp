@@ -32,6 +32,9 @@ extern const CLI::Validator kNoiseFrequency;
 extern const CLI::Validator kDomainSide;
 // CNJ's step scale: (0, 2^20] (sampling/curl_noise_jitter.hpp says why).
 extern const CLI::Validator kStepScale;
+// A real number in [lo, hi] ((lo, hi] with `open_below`), its range shown as `shown` (e.g. "(0, 1/4]") or
+// else with %g: CLI11's Range printed its bounds with %f ("0.000000 to 0.250000" for (0, 1/4]).
+CLI::Validator real_in(double lo, double hi, bool open_below = false, const std::string& shown = "");
 // Digits only, read exactly: CLI11 would take "-1" and "18446744073709551616" as 2^64 - 1 and "" as 0.
 extern const CLI::Validator kUnsignedInteger;
 // --threads: 0 (all cores) or 1..max_thread_count() (core/parallel.hpp).

@@ -111,7 +111,7 @@ struct ReproduceCommand : Subcommand {
                    "RMS speed of the field in unit lengths (image widths) per unit time, in [1e-6, 1e6]; default: the\n"
                    "setting's\n"
                    "(shader: 5.049, ours: 1)")
-        ->check(CLI::Range(1e-6, 1e6));
+        ->check(real_in(1e-6, 1e6));
     progress.add_to(*t2);
     add_common_options(*t2, common2);
     t2->callback([this] { run_table2(); });
@@ -288,7 +288,7 @@ struct ReproduceCommand : Subcommand {
                   fmt::format("Frames F, frame 0 included, in [2, {}]", dfvn::AnimationOptions::kMaxFrames))
         ->capture_default_str();
     f->add_option("--phase-step", figure8.phase_step,
-                  "Phase step DA in radians per frame, in (0, 2 pi]: the field turns by DA per frame, and a frame\n"
+                  "Phase step DA in radians per frame, in [2^-30, 2 pi]: the field turns by DA per frame, and a frame\n"
                   "lasts DA times the CNJ trace time")
         ->capture_default_str();
     f->add_option("--grid-2d", figure8.grid_2d, "2D: lattice points per axis K of the cubic start lattice")
@@ -343,7 +343,7 @@ struct ReproduceCommand : Subcommand {
     c->add_option("--trace-time", constructions.trace_time,
                   "Trace time t of every trace (accuracy and escapes), in (0, 100] (RMS |c| = 1: unit lengths)")
         ->capture_default_str()
-        ->check(CLI::Range(1e-12, 100.0));
+        ->check(real_in(1e-12, 100.0));
     c->add_option("--divergence-points", constructions.divergence_points,
                   "Uniform random points per field for |div c|/|Dc| (issue 26's targets are stated for 100000)")
         ->capture_default_str()

@@ -64,6 +64,7 @@ struct SampleCommand : Subcommand {
   bool no_stats = false;
   bool no_timing = false;
   bool stream = false;
+  std::string streaming_note;  // why the run streams by itself (the sets' memory), printed once it goes ahead
   CLI::Option* stats_option = nullptr;
   CLI::Option* format_option = nullptr;
   TransformOptions transform;
@@ -303,6 +304,7 @@ struct SampleCommand : Subcommand {
       config.count = count;
       config.grid = dfvn::grid_for_count(config.dimension, count);
     }
+    check_boundary_spacings();
     config.cnj.transform = transform.transform();
     config.cnj.transform.steer = steer.spec(noise, config.dimension);
     config.cnj.flow = bridson.flow();
@@ -315,6 +317,7 @@ struct SampleCommand : Subcommand {
     config.validate();
     dfvn::check_seed_range(common.seed, static_cast<std::uint64_t>(realizations), "--seed", "--realizations");
     check_output_options();
+    check_streaming_space();
 
     // Check every destination before the work starts; each file is then written whole or not at all.
     std::vector<std::pair<std::string, std::string>> outputs;
@@ -460,8 +463,30 @@ struct SampleCommand : Subcommand {
       return;
     }
     config.stream = true;
-    std::fprintf(stderr, "%s: note: the point sets need about %s of memory (limit %s): streaming them in slabs (--stream)\n",
-                 kProgram, dfvn::byte_size(need).c_str(), dfvn::byte_size(limit).c_str());
+    streaming_note = fmt::format("the point sets need about {} of memory (limit {})", dfvn::byte_size(need),
+                                 dfvn::byte_size(limit));
+  }
+
+  // --boundary-spacings W: the help's "at most a quarter of the cube's side" (the field clamped a wider width
+  // to a quarter silently). Only where it applies (conformant cube or ball; refused above elsewhere).
+  void check_boundary_spacings() const {
+    if (bound_options[1]->count() == 0) return;
+    const double spacing = dfvn::cnj_lattice(config.lattice(), config.cnj.domain).spacing();
+    if (config.cnj.boundary_width * spacing > 0.25)
+      throw std::invalid_argument(fmt::format("--boundary-spacings {:g}: {:g} spacings of {:g} is {:g} of the side, more than "
+                                              "a quarter: at most {:g} spacings with --grid {}",
+                                              config.cnj.boundary_width, config.cnj.boundary_width, spacing,
+                                              config.cnj.boundary_width * spacing, 0.25 / spacing, config.grid));
+  }
+
+  // A streamed run's temporary files must fit in $TMPDIR (and its open files in the limit): refused up front,
+  // before any output is made; the note of the automatic switch comes after, when the run goes ahead.
+  void check_streaming_space() const {
+    if (!config.stream) return;
+    const std::string why = dfvn::stream_temporaries_refusal(config, dfvn::stream_slab_count(config, config.stream_slabs));
+    if (!why.empty()) throw std::invalid_argument(streaming_note.empty() ? why : streaming_note + ", and " + why);
+    if (!streaming_note.empty())
+      std::fprintf(stderr, "%s: note: %s: streaming them in slabs (--stream)\n", kProgram, streaming_note.c_str());
   }
 
   void run_streamed(dfvn::PointFormat point_format) {

@@ -62,15 +62,13 @@ struct StatsCommand : Subcommand {
         "CD, WD, MD and L2-star discrepancies (as scipy.stats.qmc.discrepancy). One CSV row per set of every\n"
         "input (columns input, set); inputs with several sets also get their mean and sd rows (column\n"
         "stat = mean, sd, with set empty; value in the sets' rows).");
-    // A file or '-' (standard input).
-    const CLI::Validator file_or_standard_input(
-        [](std::string& path) { return path == kStandardInput ? std::string() : CLI::ExistingFile(path); }, "FILE|-");
+    // A file or '-' (standard input): one that cannot be read is bad data (exit 1), said by the reader.
     cmd->add_option("--input,inputs", inputs,
                     "Point file to read, as --input FILE (repeatable) and/or positional FILE...; '-' = standard input (once;\n"
                     "needs --format). CSV (optional header), NPY float64/float32 (points, N) or (sets, points, N),\n"
                     "dat (whitespace-separated, '#' lines between sets) or UTK's binary .bin (one record a set)")
         ->required()
-        ->check(file_or_standard_input);
+        ->type_name("FILE|-");
     cmd->add_option("--format", format,
                     "Point file format (of --input): csv, npy, dat or bin, for every input; default: each file's extension (.txt = dat); required\n"
                     "with '-'")

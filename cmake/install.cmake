@@ -125,16 +125,18 @@ file(GLOB dfvn_plot_programs CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/scrip
 install(FILES ${dfvn_plot_programs} DESTINATION ${DFVN_DATA_DIR})
 
 # The man page, from `dfvn-sample --help-all` (the help of every subcommand, reproduce's included, each a
-# section) and `--version`, when help2man is there; without it the page is skipped with a note.
+# section), `--version` and the exit codes (cmake/exit-status.h2m), when help2man is there; without it the
+# page is skipped with a note.
 find_program(DFVN_HELP2MAN help2man)
 if(DFVN_HELP2MAN)
   set(dfvn_man_page ${CMAKE_CURRENT_BINARY_DIR}/dfvn-sample.1)
   add_custom_command(
     OUTPUT ${dfvn_man_page}
     COMMAND ${DFVN_HELP2MAN} --no-info --no-discard-stderr --help-option=--help-all
+            --include=${PROJECT_SOURCE_DIR}/cmake/exit-status.h2m
             "--name=divergence-free vector noise, curl-noise jittering and point-set statistics"
             --output=${dfvn_man_page} $<TARGET_FILE:dfvn-sample>
-    DEPENDS dfvn-sample
+    DEPENDS dfvn-sample ${PROJECT_SOURCE_DIR}/cmake/exit-status.h2m
     COMMENT "Generating the man page dfvn-sample.1 with help2man")
   add_custom_target(dfvn-sample-man ALL DEPENDS ${dfvn_man_page})
   install(FILES ${dfvn_man_page} DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
@@ -142,10 +144,10 @@ if(DFVN_HELP2MAN)
     set(dfvn_mpi_man_page ${CMAKE_CURRENT_BINARY_DIR}/dfvn-sample-mpi.1)
     add_custom_command(
       OUTPUT ${dfvn_mpi_man_page}
-      COMMAND ${DFVN_HELP2MAN} --no-info --no-discard-stderr
+      COMMAND ${DFVN_HELP2MAN} --no-info --no-discard-stderr --include=${PROJECT_SOURCE_DIR}/cmake/exit-status.h2m
               "--name=dfvn-sample sample --stream over MPI ranks, with the one-process bytes"
               --output=${dfvn_mpi_man_page} $<TARGET_FILE:dfvn-sample-mpi>
-      DEPENDS dfvn-sample-mpi
+      DEPENDS dfvn-sample-mpi ${PROJECT_SOURCE_DIR}/cmake/exit-status.h2m
       COMMENT "Generating the man page dfvn-sample-mpi.1 with help2man")
     add_custom_target(dfvn-sample-mpi-man ALL DEPENDS ${dfvn_mpi_man_page})
     install(FILES ${dfvn_mpi_man_page} DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)

@@ -11,6 +11,7 @@
 #include "dfvn/core/dimension.hpp"
 #include "dfvn/field/evaluate_points.hpp"
 #include "dfvn/integrate/trace_points.hpp"
+#include "checked_def.hpp"
 #include "numpy_points.hpp"
 
 namespace dfvn::python {
@@ -175,7 +176,7 @@ py::array_t<double> trace(const PointArray& points, double time, std::uint64_t s
 
 void bind_field(py::module_& module) {
   using namespace pybind11::literals;
-  module.def("field", &field, "points"_a, py::kw_only(), "seed"_a = 1, "frequency"_a = 1.0,
+  def_checked(module, "field", &field, "points"_a, py::kw_only(), "seed"_a = 1, "frequency"_a = 1.0,
              "noise"_a = std::string(to_string(kDefaultNoiseBasis)), "phase"_a = 0.0, "domain"_a = "free",
              "bound"_a = py::none(), "boundary_width"_a = py::none(),
              "field"_a = std::string(to_string(kDefaultFieldKind)), "obstacles"_a = std::vector<std::string>{}, "threads"_a = 0,
@@ -219,7 +220,7 @@ rotation (default 'two-vector'): how noise='simplex' turns its gradients with th
 
 Returns (c, f): c (n, N), the field vector (RMS |c| = 1), and f (n, N-1), the noise values f_i(x);
 the same numbers as `dfvn-sample field` writes.)");
-  module.def("trace", &trace, "points"_a, "t"_a, py::kw_only(), "seed"_a = 1, "frequency"_a = 1.0,
+  def_checked(module, "trace", &trace, "points"_a, "t"_a, py::kw_only(), "seed"_a = 1, "frequency"_a = 1.0,
              "noise"_a = std::string(to_string(kDefaultNoiseBasis)), "phase"_a = 0.0, "integrator"_a = "rk4",
              "reprojection"_a = py::none(), "steps"_a = 1, "domain"_a = "free", "bound"_a = py::none(),
              "boundary_width"_a = py::none(), "field"_a = std::string(to_string(kDefaultFieldKind)),

@@ -13,6 +13,7 @@
 #include "dfvn/experiment/experiment.hpp"
 #include "dfvn/sampling/latin_hypercube.hpp"
 #include "dfvn/sampling/poisson_disk.hpp"
+#include "checked_def.hpp"
 #include "numpy_points.hpp"
 
 namespace dfvn::python {
@@ -220,14 +221,14 @@ void bind_sampling(py::module_& module) {
                                bound, threads, max_memory_gib, field, phase, stretch, time});
     };
   };
-  module.def("_latin_hypercube", &latin_hypercube, "d"_a, "n"_a, "seed"_a, "threads"_a = 0,
+  def_checked(module, "_latin_hypercube", &latin_hypercube, "d"_a, "n"_a, "seed"_a, "threads"_a = 0,
              "Internal: n Latin hypercube points in [0,1)^d (dfvn.LatinHypercube).");
-  module.def("_poisson_disk", &poisson_disk_points, "d"_a, "radius"_a, "ncandidates"_a, "max_points"_a, "seed"_a,
+  def_checked(module, "_poisson_disk", &poisson_disk_points, "d"_a, "radius"_a, "ncandidates"_a, "max_points"_a, "seed"_a,
              "threads"_a = 0, "Internal: the first max_points of a Poisson disk process in [0,1]^d, and whether it "
              "saturated first (dfvn.PoissonDisk).");
   const char* doc = "Internal: one point set as `dfvn-sample --points` makes it (python/dfvn/qmc.py calls it).";
   for (const auto& [name, f] : {std::pair{"_generate", &generate}, std::pair{"_plan", &plan}}) {
-    module.def(name, call(f), "method"_a, "d"_a, py::kw_only(), "grid"_a = py::none(), "n"_a = py::none(),
+    def_checked(module, name, call(f), "method"_a, "d"_a, py::kw_only(), "grid"_a = py::none(), "n"_a = py::none(),
                "seed"_a = 1, "protocol"_a = "unit", "scramble"_a = true, "radius"_a = 0.0, "ncandidates"_a = 30,
                "noise"_a = std::string(to_string(cnj.noise)), "cycles_per_spacing"_a = cnj.frequency,
                "step_scale"_a = cnj.step_scale, "integrator"_a = std::string(to_string(cnj.trace.integrator)),

@@ -18,6 +18,7 @@
 #include "dfvn/sampling/halton.hpp"
 #include "dfvn/sampling/jitter.hpp"
 #include "dfvn/sampling/sobol.hpp"
+#include "checked_def.hpp"
 #include "numpy_points.hpp"
 
 namespace dfvn::python {
@@ -61,8 +62,8 @@ py::array_t<double> sequence(const std::string& method, int d, std::uint64_t sta
 
 void bind_sequence(py::module_& module) {
   using namespace pybind11::literals;
-  module.def("_sequence", &sequence, "method"_a, "d"_a, "start"_a, "count"_a, "seed"_a, "scramble"_a, "digits"_a = 32,
-             "threads"_a = 0,
+  def_checked(module, "_sequence", &sequence, "method"_a, "d"_a, "start"_a, "count"_a, "seed"_a, "scramble"_a,
+              "digits"_a = 32, "threads"_a = 0,
              "Internal: points [start, start + count) of 'sobol', 'halton' or 'random' in [0,1)^d (dfvn.Sobol etc.).");
   module.attr("_sobol_max_dimensions") = kSobolMaxDimensions;
   module.attr("_halton_max_dimensions") = kHaltonMaxDimensions;

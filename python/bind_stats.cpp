@@ -12,6 +12,7 @@
 #include "dfvn/stats/distance_scale.hpp"
 #include "dfvn/stats/point_set_statistics.hpp"
 #include "dfvn/stats/radial_distribution.hpp"
+#include "checked_def.hpp"
 #include "numpy_points.hpp"
 
 namespace dfvn::python {
@@ -78,7 +79,7 @@ double discrepancy_of(const PointArray& array, const std::string& method, int th
 
 void bind_stats(py::module_& module) {
   using namespace pybind11::literals;
-  module.def("nn_stats", &nn_stats, "points"_a, py::kw_only(), "domain_side"_a = 1.0, "knn"_a = "nanoflann",
+  def_checked(module, "nn_stats", &nn_stats, "points"_a, py::kw_only(), "domain_side"_a = 1.0, "knn"_a = "nanoflann",
              "periodic"_a = false, "threads"_a = 0,
              R"(Nearest-neighbour statistics of a point set in [0, domain_side]^N, N = 1..8 (Table 1's).
 
@@ -86,9 +87,9 @@ Returns a dict: points, min, q01 (1% quantile), median, mean and median_scaled (
 (points / volume)^(1/N): 1 for a cubic lattice), as `dfvn-sample stats` computes them. knn: the
 exact KD-tree, 'nanoflann' or 'flann' (the same distances). periodic: minimum-image distances on the
 torus [0, domain_side)^N (`dfvn-sample stats --periodic`; as scipy's cKDTree(..., boxsize=side)).)");
-  module.def("_discrepancy", &discrepancy_of, "points"_a, "method"_a, "threads"_a = 0,
+  def_checked(module, "_discrepancy", &discrepancy_of, "points"_a, "method"_a, "threads"_a = 0,
              "Internal: the discrepancy of points in [0,1]^N (dfvn.discrepancy).");
-  module.def("rdf", &rdf, "points"_a, py::kw_only(), "domain_side"_a = 1.0, "r_max"_a = 0.0, "bins"_a = 50,
+  def_checked(module, "rdf", &rdf, "points"_a, py::kw_only(), "domain_side"_a = 1.0, "r_max"_a = 0.0, "bins"_a = 50,
              "max_queries"_a = 20000, "seed"_a = 1, "periodic"_a = false, "threads"_a = 0,
              R"(Radial distribution function g(r) of a point set in [0, domain_side]^N, N = 2..8, with the
 translation edge correction (E g = 1 for uniform random points). Returns (r, g): bin centres and values.

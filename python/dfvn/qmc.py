@@ -68,6 +68,13 @@ def _count(value, name, minimum):
     return int(value)
 
 
+def _real(value, name):
+    """A float from a real number (TypeError naming `name` for a str, None or a list, whose float() would not)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must be a real number, not {type(value).__name__}")
+    return float(value)
+
+
 def _threads(workers, default):
     """SciPy's workers (-1: all cores, else >= 1) as the library's threads (0: all cores); None: the default."""
     if workers is None:
@@ -77,8 +84,16 @@ def _threads(workers, default):
     return 0 if workers == -1 else int(workers)
 
 
+def _check_seed(seed):
+    """ValueError naming the seed for a negative int (numpy's own words do not name it)."""
+    if isinstance(seed, (numbers.Integral, np.integer)) and not isinstance(seed, bool) and int(seed) < 0:
+        raise ValueError(f"seed must be a non-negative integer, got {int(seed)}")
+    return seed
+
+
 def _check_random_state(seed):
     """scipy.stats._qmc.check_random_state: a Generator from None or an int; a Generator or RandomState as is."""
+    _check_seed(seed)
     if seed is None or isinstance(seed, (numbers.Integral, np.integer)):
         return np.random.default_rng(seed)
     if isinstance(seed, (np.random.RandomState, np.random.Generator)):
@@ -142,6 +157,7 @@ class QMCEngine(_Base):
     def __init__(self, d, *, optimization=None, seed=None, threads=0):
         if isinstance(seed, np.random.SeedSequence):
             seed = np.random.default_rng(seed)  # SciPy takes a Generator, not a SeedSequence
+        _check_seed(seed)
         super().__init__(d=d, optimization=optimization, seed=seed)
         self.d = int(self.d)
         self.threads = _count(threads, "threads", 0)
@@ -280,6 +296,8 @@ class Sobol(_Sequence):
 
         m: the log2 of the count (no default)."""
         m = _count(m, "m", 0)
+        if m > 32:  # before 2 ** m: m = 2**63 computed that power for ever
+            raise ValueError(f"m must be at most 32 (Sobol supports at most 2^32 points), got {m}")
         n = 2 ** m
         total = self.num_generated + n
         if total & (total - 1) != 0:
@@ -342,7 +360,7 @@ class _LatticeEngine(QMCEngine):
         super().__init__(d, optimization=optimization, seed=seed, threads=threads)
         _set_dimension(self)
         self.protocol = protocol
-        self.max_memory_gib = float(max_memory_gib)
+        self.max_memory_gib = _real(max_memory_gib, "max_memory_gib")
         self._options = options
         self._init_quad = {"d": self.d, "optimization": optimization, "protocol": protocol, "threads": threads,
                            "max_memory_gib": max_memory_gib, **options}
@@ -453,11 +471,12 @@ class CNJ(_LatticeEngine):
                  field=_DEFAULTS["field"], phase=0.0, stretch=None, time=None, **refused):
         _refuse(type(self).__name__, refused)
         super().__init__(d, optimization=optimization, seed=seed, protocol=protocol, threads=threads,
-                         max_memory_gib=max_memory_gib, noise=noise, cycles_per_spacing=float(cycles_per_spacing),
-                         step_scale=float(step_scale), integrator=integrator, reprojection=reprojection,
+                         max_memory_gib=max_memory_gib, noise=noise,
+                         cycles_per_spacing=_real(cycles_per_spacing, "cycles_per_spacing"),
+                         step_scale=_real(step_scale, "step_scale"), integrator=integrator, reprojection=reprojection,
                          steps=_count(steps, "steps", -(1 << 31)), domain=domain, domain_mode=domain_mode,
-                         bound=bound, field=field, phase=float(phase), stretch=_stretch_spec(stretch),
-                         time=None if time is None else float(time))
+                         bound=bound, field=field, phase=_real(phase, "phase"), stretch=_stretch_spec(stretch),
+                         time=None if time is None else _real(time, "time"))
 
     def _why_fewer(self, requested, got):
         if self._options["domain"] == "ball":
@@ -605,7 +624,7 @@ class PoissonDisk(QMCEngine):
             raise ValueError("hypersphere='surface' is not available: dfvn's Poisson disk sampling throws its "
                              "candidates in the volume (the annulus [r, 2r]), as SciPy's 'volume'")
         _set_dimension(self)
-        self.radius = float(radius)
+        self.radius = _real(radius, "radius")
         if not math.isfinite(self.radius) or self.radius <= 0.0:
             raise ValueError(f"radius must be a finite number > 0, got {radius!r}")
         self.hypersphere = hypersphere
@@ -695,7 +714,7 @@ def sample(method, dim, *, grid=None, n=None, seed=1, protocol="unit", scramble=
         radius=radius, ncandidates=ncandidates, noise=noise, cycles_per_spacing=cycles_per_spacing,
         step_scale=step_scale, integrator=integrator, reprojection=reprojection, steps=steps, domain=domain,
         domain_mode=domain_mode, bound=bound, threads=threads, max_memory_gib=max_memory_gib, field=field,
-        phase=float(phase), stretch=_stretch_spec(stretch), time=None if time is None else float(time))
+        phase=_real(phase, "phase"), stretch=_stretch_spec(stretch), time=None if time is None else _real(time, "time"))
     asked = n if n is not None else requested
     got = len(points)
     why = []
@@ -743,7 +762,7 @@ def discrepancy(sample, *, iterative=False, method="CD", workers=1):
     if points.max() > 1.0 or points.min() < 0.0:
         raise ValueError("Sample is not in unit hypercube")
     threads = _threads(workers, 1)
-    if method not in _DISCREPANCY_FORMS:
+    if not isinstance(method, str) or method not in _DISCREPANCY_FORMS:
         raise ValueError(f"{method!r} is not a valid method. It must be one of {set(_DISCREPANCY_FORMS)!r}")
     if np.isnan(points).any():
         return float("nan")

@@ -37,6 +37,47 @@ double site_bound(const AnimationOptions& options) {
   return count;
 }
 
+// Whether the start set keeps the site x: conformant, the sites in the domain; drop, those within
+// drop_margin spacings of it (the padded box already bounds the cube's).
+bool keeps_start_site(const AnimationOptions& options, const double* x) {
+  const int n = options.dimension;
+  const bool ball = options.cnj.domain == DomainKind::ball;
+  if (options.cnj.domain_mode != DomainMode::drop) return Domain::unit(ball ? DomainKind::ball : DomainKind::cube).contains(x, n);
+  if (!ball) return true;
+  double r2 = 0.0;
+  for (int j = 0; j < n; ++j) r2 += (x[j] - 0.5) * (x[j] - 0.5);
+  return std::sqrt(r2) <= 0.5 + pad_spacings(options) * (1.0 / options.grid);
+}
+
+// The start lattices as animation_start_sites makes them: per axis `per_axis` coordinates (first + i) / K.
+struct StartLatticePart {
+  int per_axis;
+  double first;
+};
+std::vector<StartLatticePart> start_lattice_parts(const AnimationOptions& options) {
+  const int k = options.grid, pad = pad_spacings(options);
+  std::vector<StartLatticePart> parts{{k + 2 * pad, 0.5 - pad}};
+  if (options.lattice == StartLattice::bcc) parts.push_back({k - 1 + 2 * pad, 1.0 - pad});
+  return parts;
+}
+
+// Whether the start set has a site: the one of each lattice nearest the centre (every coordinate the one
+// nearest 1/2) is kept when any is (the domain and the margin are balls or boxes about the centre).
+bool holds_a_start_site(const AnimationOptions& options) {
+  std::vector<double> x(static_cast<std::size_t>(options.dimension));
+  for (const StartLatticePart& part : start_lattice_parts(options)) {
+    if (part.per_axis <= 0) continue;
+    double nearest = part.first / options.grid;
+    for (int i = 1; i < part.per_axis; ++i) {
+      const double c = (part.first + i) / options.grid;
+      if (std::abs(c - 0.5) < std::abs(nearest - 0.5)) nearest = c;
+    }
+    std::fill(x.begin(), x.end(), nearest);
+    if (keeps_start_site(options, x.data())) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 void AnimationOptions::validate() const {
@@ -45,9 +86,11 @@ void AnimationOptions::validate() const {
   if (grid < 2 || grid > (1 << 20)) throw std::invalid_argument(fmt::format("grid must be in [2, 2^20], got {}", grid));
   if (frames < 1 || frames > kMaxFrames)
     throw std::invalid_argument(fmt::format("frames must be in [1, {}], got {}", kMaxFrames, frames));
-  if (!(std::isfinite(phase_step) && phase_step > 0.0 && phase_step <= 2.0 * std::numbers::pi))
-    throw std::invalid_argument(fmt::format("phase step must be in (0, 2 pi] radians per frame, got {}", phase_step));
-  if (!std::isfinite(start_phase)) throw std::invalid_argument(fmt::format("phase must be finite, got {}", start_phase));
+  if (!(std::isfinite(phase_step) && phase_step >= kMinPhaseStep && phase_step <= 2.0 * std::numbers::pi))
+    throw std::invalid_argument(
+        fmt::format("phase step must be in [2^-30, 2 pi] = [{:g}, {:g}] radians per frame, got {:g}", kMinPhaseStep,
+                    2.0 * std::numbers::pi, phase_step));
+  if (!std::isfinite(start_phase)) throw std::invalid_argument(fmt::format("phase must be finite, got {:g}", start_phase));
   // The last frame's phase must stay finite and exact enough to turn the gradients.
   check_noise_phase(start_phase + phase_step * frames);
   parse_start_lattice(to_string(lattice));
@@ -57,6 +100,19 @@ void AnimationOptions::validate() const {
     throw std::invalid_argument("animate needs a domain with a boundary: cube or ball (the torus has none to keep points in)");
   if (cnj.field != FieldKind::dfvn) throw std::invalid_argument("animate traces along the DFVN field (--field dfvn)");
   cnj.validate();
+  // The help's limit: a transition width of at most a quarter of the side (the field clamped it there).
+  if (cnj.domain_mode == DomainMode::conformant && cnj.boundary_width / grid > 0.25)
+    throw std::invalid_argument(fmt::format(
+        "boundary width {:g} lattice spacings is {:g} of the side, more than a quarter: at most {:g} spacings with grid {}",
+        cnj.boundary_width, cnj.boundary_width / grid, 0.25 * grid, grid));
+  if (!holds_a_start_site(*this)) {  // an empty run would write empty frames and exit 0
+    AnimationOptions larger = *this;
+    while (!holds_a_start_site(larger)) ++larger.grid;
+    throw std::invalid_argument(fmt::format(
+        "the {} holds no site of the {} start lattice of grid {} in {}D; the smallest grid with a site inside is {}",
+        cnj.domain == DomainKind::ball ? "ball inscribed in the cube" : "cube", to_string(lattice), grid, dimension,
+        larger.grid));
+  }
   const double bytes = site_bound(*this) * frames * dimension * sizeof(double);
   if (bytes > kMaxFrameBytes)
     throw std::invalid_argument(fmt::format(
@@ -71,11 +127,7 @@ int animation_frame_steps(const AnimationOptions& options) {
 }
 
 std::vector<double> animation_start_sites(const AnimationOptions& options) {
-  const int n = options.dimension, k = options.grid, pad = pad_spacings(options);
-  const double h = 1.0 / k;
-  const bool ball = options.cnj.domain == DomainKind::ball;
-  const Domain domain = Domain::unit(ball ? DomainKind::ball : DomainKind::cube);
-  const bool drop = options.cnj.domain_mode == DomainMode::drop;
+  const int n = options.dimension, k = options.grid;
   std::vector<double> sites;
   std::vector<double> x(static_cast<std::size_t>(n));
   // One lattice: per axis `per_axis` coordinates (first + i) / K (the cubic one's are LatticeSpec's
@@ -90,19 +142,10 @@ std::vector<double> animation_start_sites(const AnimationOptions& options) {
         x[j] = (first + static_cast<double>(rest % per_axis)) / k;
         rest /= per_axis;
       }
-      bool keep = true;
-      if (!drop) {
-        keep = domain.contains(x.data(), n);
-      } else if (ball) {
-        double r2 = 0.0;
-        for (int j = 0; j < n; ++j) r2 += (x[j] - 0.5) * (x[j] - 0.5);
-        keep = std::sqrt(r2) <= 0.5 + pad * h;
-      }
-      if (keep) sites.insert(sites.end(), x.begin(), x.end());
+      if (keeps_start_site(options, x.data())) sites.insert(sites.end(), x.begin(), x.end());
     }
   };
-  add_lattice(k + 2 * pad, 0.5 - pad);
-  if (options.lattice == StartLattice::bcc) add_lattice(k - 1 + 2 * pad, 1.0 - pad);
+  for (const StartLatticePart& part : start_lattice_parts(options)) add_lattice(part.per_axis, part.first);
   return sites;
 }
 
@@ -146,8 +189,10 @@ AnimationResult run_animation(const AnimationOptions& options, std::uint64_t see
   const auto accept = [&](const Vec<N>& x) { return !conformant || domain.contains(x.data(), N); };
   const OnReject on_reject = conformant ? OnReject::retrace : OnReject::drop;
 
+  // alpha_0 modulo 2 pi: the same field, and a phase the steps advance (noise/noise_functions.hpp).
+  const double start_phase = reduced_phase(options.start_phase);
   for (int k = 0; k < options.frames; ++k) {
-    const double phase = options.start_phase + k * options.phase_step;
+    const double phase = start_phase + k * options.phase_step;
     const DfvnField<N> field = field_at(phase);
     if (k == 0) result.field_frequency = field.frequency();
     TraceOptions trace = cnj_trace_options(cnj);

@@ -45,8 +45,11 @@ struct AnimationOptions {
   int grid = 16;  // K: the cubic lattice's points per axis, spacing 1 / K
   StartLattice lattice = StartLattice::cubic;
   int frames = 300;          // F, frame 0 included
-  double phase_step = 0.05;  // DA in radians per frame, in (0, 2 pi]
-  double start_phase = 0.0;  // alpha_0 in radians
+  double phase_step = 0.05;  // DA in radians per frame, in [kMinPhaseStep, 2 pi]
+  double start_phase = 0.0;  // alpha_0 in radians, any finite real (the frames start from it modulo 2 pi)
+  // The frames' phases reach at most pi + 10^5 x 2 pi < 2^20, whose unit in the last place is 2^-32: a step
+  // of 2^-30 or more advances every frame's phase (by 4 units or more); a smaller one could leave it.
+  static constexpr double kMinPhaseStep = 0x1p-30;
   // The field and the domain: noise, frequency (cycles per lattice spacing), step_scale (t_cnj),
   // domain (cube or ball; the torus has no boundary to animate against), domain_mode, bound,
   // boundary_width. cnj.phase is not used (start_phase is alpha_0).
@@ -79,7 +82,7 @@ std::vector<double> animation_start_sites(const AnimationOptions& options);
 
 struct FrameStats {
   int frame = 0;
-  double phase = 0.0;              // alpha_k
+  double phase = 0.0;              // alpha_k, from alpha_0 modulo 2 pi (reduced_phase)
   std::uint64_t inside = 0;        // particles in the domain in this frame
   std::uint64_t entered = 0;       // outside in frame k-1, inside in frame k (0 in frame 0)
   std::uint64_t left = 0;          // inside in frame k-1, outside in frame k (0 in frame 0)

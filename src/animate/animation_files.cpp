@@ -111,12 +111,15 @@ std::string animation_summary(const AnimationResult& result) {
   }
   const AnimationOptions& o = result.options;
   return fmt::format(
-      "{}D, {} frames, {} particles ({} lattice, {} mode in the {}), phase {} + k * {} rad, frame time {} ({} RK4 "
+      "{}D, {} frames, {} particles ({} lattice, {} mode in the {}), phase {}{} + k * {} rad, frame time {} ({} RK4 "
       "step(s))\n"
       "inside per frame: {}..{}; entered {}, left {} ({} popping events per 100 frames); largest jump {}; "
       "kept at start {}\n",
       o.dimension, o.frames, result.particles, to_string(o.lattice), to_string(o.cnj.domain_mode),
-      to_string(o.cnj.domain), format_real(o.start_phase), format_real(o.phase_step), format_real(result.frame_time),
+      to_string(o.cnj.domain), format_real(o.start_phase),
+      reduced_phase(o.start_phase) == o.start_phase ? std::string()
+                                                    : " (" + format_real(reduced_phase(o.start_phase)) + " modulo 2 pi)",
+      format_real(o.phase_step), format_real(result.frame_time),
       result.frame_steps, lo, hi, entered, left, format_real(result.popping_per_100_frames(), 4), format_real(jump, 4),
       kept);
 }

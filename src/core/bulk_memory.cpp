@@ -3,6 +3,9 @@
 #include <sys/mman.h>
 
 #include <cstdint>
+#include <cstdio>
+
+#include "dfvn/core/message_text.hpp"
 
 namespace dfvn {
 
@@ -15,13 +18,17 @@ std::uintptr_t round_up(std::uintptr_t x, std::uintptr_t to) { return (x + to - 
 
 }  // namespace
 
+OutOfMemory::OutOfMemory(double bytes) {
+  std::snprintf(message_, sizeof message_, "out of memory: cannot allocate %s; try a smaller problem", byte_size(bytes).c_str());
+}
+
 // The block starts on a huge-page boundary (mapped with a huge page of slack, the unaligned head and
 // the tail beyond the block unmapped again), so every whole 2 MB of it can be one huge page.
 void* map_pages(std::size_t bytes) {
-  if (bytes == 0 || bytes > std::size_t(-1) / 2) throw std::bad_alloc();
+  if (bytes == 0 || bytes > std::size_t(-1) / 2) throw OutOfMemory(static_cast<double>(bytes));
   const std::uintptr_t length = round_up(bytes, kPage);
   void* p = mmap(nullptr, length + kHugePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-  if (p == MAP_FAILED) throw std::bad_alloc();
+  if (p == MAP_FAILED) throw OutOfMemory(static_cast<double>(bytes));
   const auto start = reinterpret_cast<std::uintptr_t>(p);
   const std::uintptr_t aligned = round_up(start, kHugePage);
   if (aligned > start) munmap(p, aligned - start);

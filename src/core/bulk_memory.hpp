@@ -16,7 +16,18 @@ namespace dfvn {
 // from operator new, where reuse of freed memory beats fresh pages.
 inline constexpr std::size_t kBulkPagesFrom = std::size_t{4} << 20;
 
-// `bytes` (> 0) of zero-filled anonymous pages, advised to use huge pages; std::bad_alloc when the
+// std::bad_alloc that says how much was asked for ("out of memory: cannot allocate 1.50 TiB"), so that a
+// refusal names the size (the command line's and Python's MemoryError print what()).
+class OutOfMemory : public std::bad_alloc {
+ public:
+  explicit OutOfMemory(double bytes);
+  const char* what() const noexcept override { return message_; }
+
+ private:
+  char message_[96];
+};
+
+// `bytes` (> 0) of zero-filled anonymous pages, advised to use huge pages; OutOfMemory when the
 // system refuses. Release with release_pages(p, bytes) and the same byte count.
 void* map_pages(std::size_t bytes);
 void release_pages(void* p, std::size_t bytes) noexcept;
@@ -34,7 +45,7 @@ struct BulkAllocator {
   BulkAllocator(const BulkAllocator<U>&) noexcept {}
 
   T* allocate(std::size_t n) {
-    if (n > std::size_t(-1) / sizeof(T)) throw std::bad_array_new_length();
+    if (n > std::size_t(-1) / sizeof(T)) throw OutOfMemory(static_cast<double>(n) * sizeof(T));
     const std::size_t bytes = n * sizeof(T);
     if (bytes >= kBulkPagesFrom) return static_cast<T*>(map_pages(bytes));
     return static_cast<T*>(::operator new(bytes, std::align_val_t{alignof(T)}));

@@ -38,7 +38,10 @@ std::string quote_for_message(std::string_view text, std::size_t max_chars) {
   std::size_t used = 0;
   for (; used < text.size(); ++used) {
     std::string piece;
-    append_escaped(piece, static_cast<unsigned char>(text[used]), true);
+    if (text[used] == '\'')
+      piece = "\\'";  // a quote inside the quotes is escaped: the text is quoted once, unambiguously
+    else
+      append_escaped(piece, static_cast<unsigned char>(text[used]), true);
     if (body.size() + piece.size() > max_chars) break;
     body += piece;
   }

@@ -13,7 +13,7 @@ namespace dfvn {
 // EF BB BF) show. With `escape_backslash`, '\' becomes "\\" so the escapes are unambiguous.
 std::string escape_bytes(std::string_view text, bool escape_backslash = true);
 
-// `text` for a message: in single quotes, escaped, and cut to about max_chars characters with
+// `text` for a message: in single quotes, escaped (a quote in it as \'), and cut to about max_chars characters with
 // "..." and the full length in bytes, e.g. 'aaaaaaaa...' (1048576 bytes).
 inline constexpr std::size_t kMaxEchoChars = 40;
 inline constexpr std::size_t kMaxPathEchoChars = 160;  // paths are the user's own and worth showing whole

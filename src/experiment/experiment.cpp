@@ -36,6 +36,28 @@ double physical_memory_bytes() {
   return (pages > 0 && page_size > 0) ? static_cast<double>(pages) * static_cast<double>(page_size) : 8.0 * (1ULL << 30);
 }
 
+// Whether the inscribed ball holds a site of `lattice`: its site nearest the centre has every coordinate
+// the one nearest 1/2, and is inside when its squared distance, summed as site_in_domain sums it, is
+// below 1/4.
+bool ball_holds_a_site(const LatticeSpec& lattice) {
+  double nearest = 1.0;
+  for (int i = 0; i < lattice.grid; ++i) nearest = std::min(nearest, std::abs(lattice.coordinate(i) - 0.5));
+  double from_centre2 = 0.0;
+  for (int j = 0; j < lattice.dimension; ++j) from_centre2 += nearest * nearest;
+  return from_centre2 < 0.25;
+}
+
+// An empty ball is an error naming the smallest --grid whose lattice has a site (3 at most: an odd K has a
+// site at the centre).
+void check_ball_holds_a_site(const LatticeSpec& lattice) {
+  if (ball_holds_a_site(lattice)) return;
+  LatticeSpec larger = lattice;
+  while (!ball_holds_a_site(larger)) ++larger.grid;
+  throw std::invalid_argument(fmt::format("--domain ball: the ball inscribed in the cube holds no site of the {}^{} "
+                                          "lattice of --grid {}; the smallest --grid with a site inside is {}",
+                                          lattice.grid, lattice.dimension, lattice.grid, larger.grid));
+}
+
 }  // namespace
 
 std::vector<std::string> sampling_warnings(const SampleConfig& config) {
@@ -121,6 +143,7 @@ MethodPlan plan_method(const SampleConfig& config, Method method) {
                              : static_cast<std::uint64_t>(sphere_area(config.dimension) /
                                                           std::pow(sphere_start_spacing(config.grid), config.dimension - 1));
     } else if (kind == DomainKind::ball) {
+      check_ball_holds_a_site(lattice);
       plan.requested = exact ? cnj_start_count(lattice, DomainKind::ball)
                              : static_cast<std::uint64_t>(static_cast<double>(lattice_points) *
                                                           plan.domain.measure(config.dimension));
@@ -168,7 +191,8 @@ void SampleConfig::validate() const {
   if (methods.empty()) throw std::invalid_argument("--methods must name at least one method");
   check_thread_count(threads);
   if (protocol == Protocol::paper && grid * kPaperDelta > 1e6) throw std::invalid_argument("--grid is too large");
-  cnj.validate();
+  // On the sphere CNJ validates as the sphere uses it (sphere_cnj_options: conformant along the sphere).
+  (domain() == DomainKind::sphere ? sphere_cnj_options(cnj) : cnj).validate();
   const bool has_cnj = std::find(methods.begin(), methods.end(), Method::cnj) != methods.end();
   if (has_cnj) {
     const double field_frequency = cnj.frequency / lattice().spacing();

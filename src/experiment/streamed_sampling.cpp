@@ -4,6 +4,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <numbers>
 #include <filesystem>
@@ -12,11 +13,15 @@
 #include <memory>
 #include <stdexcept>
 #include <utility>
+#include <cerrno>
+#include <sys/resource.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
 
 #include "dfvn/core/interval_union.hpp"
+#include "dfvn/core/message_text.hpp"
 #include "dfvn/core/stopwatch.hpp"
 #include "dfvn/io/atomic_file.hpp"
 #include "dfvn/sampling/jitter.hpp"
@@ -31,13 +36,15 @@ namespace {
 
 bool is_lattice(Method m) { return m == Method::cnj || m == Method::jitter; }
 
-// A temporary file of fixed-size records, removed with its object (and on signals, by registration).
+// A temporary file of fixed-size records in the run's TemporaryDirectory, removed with its object (and on
+// signals with the directory, whose registration takes every file in it).
 class TemporaryFile {
  public:
-  explicit TemporaryFile(std::string path)
-      : path_(std::move(path)), registration_(path_, TemporaryRegistration::Kind::file) {
+  explicit TemporaryFile(std::string path) : path_(std::move(path)) {
     file_.open(path_, std::ios::binary | std::ios::in | std::ios::out | std::ios::trunc);
-    if (!file_) throw std::runtime_error(fmt::format("cannot create the temporary file {}", path_));
+    if (!file_)
+      throw std::runtime_error(fmt::format("cannot create the temporary file {}: {}", quote_for_message(path_, kMaxPathEchoChars),
+                                           std::strerror(errno)));
   }
   ~TemporaryFile() {
     file_.close();
@@ -68,20 +75,37 @@ class TemporaryFile {
 
  private:
   std::string path_;
-  TemporaryRegistration registration_;
   std::fstream file_;
 };
 
-// The run's temporary directory in $TMPDIR.
+// The folder of $TMPDIR (std::filesystem::temp_directory_path: $TMPDIR, else /tmp); throws naming it when
+// it is no directory.
+std::filesystem::path temporary_folder() {
+  std::error_code error;
+  std::filesystem::path folder = std::filesystem::temp_directory_path(error);
+  if (error) {
+    const char* tmpdir = std::getenv("TMPDIR");
+    throw std::runtime_error(fmt::format("--stream keeps its temporary files in $TMPDIR, and {} is not a directory",
+                                         quote_for_message(tmpdir ? tmpdir : "/tmp", kMaxPathEchoChars)));
+  }
+  return folder;
+}
+
+// The run's temporary directory in $TMPDIR, registered (as a tree: with every file in it) before it is
+// created, so that a signal at any moment of its filling removes it whole.
 class TemporaryDirectory {
  public:
   TemporaryDirectory() {
     static int serial = 0;
-    path_ = (std::filesystem::temp_directory_path() / fmt::format("dfvn-stream.{}.{}", ::getpid(), serial++)).string();
+    path_ = (temporary_folder() / fmt::format("dfvn-stream.{}.{}", ::getpid(), serial++)).string();
+    registration_ = std::make_unique<TemporaryRegistration>(path_, TemporaryRegistration::Kind::tree);
     std::error_code error;
-    if (!std::filesystem::create_directory(path_, error))
-      throw std::runtime_error(fmt::format("cannot create the temporary directory {}", path_));
-    registration_ = std::make_unique<TemporaryRegistration>(path_, TemporaryRegistration::Kind::directory);
+    if (!std::filesystem::create_directory(path_, error)) {
+      registration_.reset();  // not ours: leave it
+      throw std::runtime_error(fmt::format("cannot create the temporary directory {}: {}",
+                                           quote_for_message(path_, kMaxPathEchoChars),
+                                           error ? error.message() : "it exists"));
+    }
   }
   ~TemporaryDirectory() {
     std::error_code ignored;
@@ -755,6 +779,46 @@ double streamed_peak_bytes(const SampleConfig& config, int slabs) {
   return peak;
 }
 
+double streamed_temporary_bytes(const SampleConfig& config) {
+  double peak = 0.0;
+  for (Method m : config.methods) {
+    const double points = static_cast<double>(plan_method(config, m).requested);
+    // Per point: the lattice methods' displacement lengths (one double, SortedRuns); with statistics its
+    // bucket record (index and N coordinates), its (index, distance) pair and the sorted distance.
+    double per_point = is_lattice(m) ? 8.0 : 0.0;
+    if (config.compute_statistics) per_point += 8.0 * (config.dimension + 1) + 16.0 + 8.0;
+    peak = std::max(peak, points * per_point);  // each method's folder is removed before the next starts
+  }
+  return peak;
+}
+
+std::string stream_temporaries_refusal(const SampleConfig& config, int slabs) {
+  const std::filesystem::path folder = temporary_folder();
+  const std::string where = quote_for_message(folder.string(), kMaxPathEchoChars);
+  struct statvfs space {};
+  if (::statvfs(folder.c_str(), &space) != 0)
+    return fmt::format("--stream keeps its temporary files in $TMPDIR {}, which cannot be examined: {}", where,
+                       std::strerror(errno));
+  const double needed = streamed_temporary_bytes(config);
+  const double free_bytes = static_cast<double>(space.f_bavail) * static_cast<double>(space.f_frsize);
+  if (needed > free_bytes)
+    return fmt::format("--stream needs about {} of temporary files in $TMPDIR {}, which has {} free: point TMPDIR at a "
+                       "larger file system, or make fewer points",
+                       byte_size(needed), where, byte_size(free_bytes));
+  // Every bucket keeps two files open (its records and its distances), besides the sorted distances, the
+  // displacement lengths, the point file and the program's own (standard streams, libraries): 16.
+  struct rlimit files {};
+  if (config.compute_statistics && ::getrlimit(RLIMIT_NOFILE, &files) == 0 && files.rlim_cur != RLIM_INFINITY) {
+    const std::uint64_t open = 2 * static_cast<std::uint64_t>(slabs) + 16;
+    if (open > files.rlim_cur)
+      return fmt::format("--stream in {} slabs keeps about {} temporary files open at once, more than this process may "
+                         "open ({}, ulimit -n): {}",
+                         slabs, open, static_cast<std::uint64_t>(files.rlim_cur),
+                         config.stream_slabs > 0 ? "give fewer --slabs, or raise the limit" : "raise the limit");
+  }
+  return {};
+}
+
 std::string streamed_memory_advice(const SampleConfig& config, int slabs, double limit) {
   // The slab counts a run may take (stream_slab_count's): the divisors of K for the lattice methods, else
   // up to the fewest points (the automatic count tries powers of two up to 2^20 and then that).
@@ -792,6 +856,7 @@ std::vector<MethodResult> run_streamed_sampling(const SampleConfig& config, int 
   config.validate();
   if (const std::string why = stream_refusal(config); !why.empty()) throw std::invalid_argument(why);
   const int count = stream_slab_count(config, slabs);
+  if (const std::string why = stream_temporaries_refusal(config, count); !why.empty()) throw std::invalid_argument(why);
   std::vector<MethodResult> results;
   for (Method m : config.methods)
     results.push_back(run_streamed_method(config, plan_method(config, m), count, point_path, format, progress));

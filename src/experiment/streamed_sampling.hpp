@@ -22,8 +22,10 @@
 // sums are exact integers of fixed point (stats/radial_distribution.hpp), so the curve is the in-memory
 // one to the bit.
 //
-// Memory is O(slab + halo); the temporaries (point count x (N + 2) x 8 bytes) go to $TMPDIR and are
-// removed on every exit. Not streamed: pds, jitter-matched, halton, lhs, --domain ball, --on sphere,
+// Memory is O(slab + halo); the temporaries (streamed_temporary_bytes: point count x (N + 4) x 8 bytes, 8
+// more for cnj and jitter) go to a folder of $TMPDIR, refused up front when it has not that much free
+// (stream_temporaries_refusal), and removed on every exit and on SIGINT, SIGTERM and SIGHUP at any moment
+// (the folder is registered with io/atomic_file.hpp's cleanup before it is made). Not streamed: pds, jitter-matched, halton, lhs, --domain ball, --on sphere,
 // more than one realization (stream_refusal says which).
 #pragma once
 
@@ -58,6 +60,14 @@ Slab generate_slab(const SampleConfig& config, const MethodPlan& plan, std::uint
 
 // Bytes a streamed run needs at its peak (about): the largest bucket with its halo, measured.
 double streamed_peak_bytes(const SampleConfig& config, int slabs);
+
+// Bytes of temporary files a streamed run keeps in $TMPDIR at its peak (the largest method's).
+double streamed_temporary_bytes(const SampleConfig& config);
+
+// Why a streamed run in `slabs` slabs cannot keep its temporary files, in one line naming the size and
+// $TMPDIR's free space (statvfs), or the open files it needs and the limit (RLIMIT_NOFILE); empty when
+// it can. run_streamed_sampling refuses with it before anything is written.
+std::string stream_temporaries_refusal(const SampleConfig& config, int slabs);
 
 // What helps when a streamed run in `slabs` slabs needs more than `limit` bytes, for the refusal: "raise
 // --slabs" only when a larger slab count the run may take would fit; "lower --rdf-max" when the RDF's halo

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "dfvn/core/dimension.hpp"
@@ -23,6 +24,11 @@ namespace dfvn {
 // A rank-deficient A yields an exact zero pivot and the zero vector, which is the correct answer.
 // The time is the latency of one dependent chain, so the pivot search and the row exchange do not
 // branch (a row is exchanged with itself when it is its own pivot) and l's sums are balanced trees.
+// A pivot below 2^-1024 (vectors of subnormal size: the gradients near the centre of an obstacle of
+// radius 1e-310) has no finite reciprocal: then cross_rescaled computes the same product exactly scaled.
+template <int N>
+Vec<N> cross_rescaled(const std::array<Vec<N>, N - 1>& v);
+
 template <int N>
 Vec<N> cross(const std::array<Vec<N>, N - 1>& v) {
   double a[N][N - 1];
@@ -47,6 +53,8 @@ Vec<N> cross(const std::array<Vec<N>, N - 1>& v) {
     scale = pivot != k ? -scale : scale;
     scale *= a[k][k];
     const double inverse_pivot = 1.0 / a[k][k];
+    if (std::abs(inverse_pivot) > std::numeric_limits<double>::max()) [[unlikely]]
+      return cross_rescaled<N>(v);
     for (int i = k + 1; i < N; ++i) {
       const double factor = a[i][k] * inverse_pivot;
       a[i][k] = factor;  // L(i, k)
@@ -63,6 +71,54 @@ Vec<N> cross(const std::array<Vec<N>, N - 1>& v) {
   }
   Vec<N> c;
   for (int i = 0; i < N; ++i) c[perm[i]] = scale * l[i];
+  return c;
+}
+
+// cross(v) for vectors of any finite size: cross is linear in each v_k, so each is scaled by a power of
+// two (exact) to a largest component in [1, 2), the product of those is taken by elimination that divides
+// by each pivot (|L(i, k)| <= 1 under partial pivoting, so nothing overflows), and the result is scaled
+// back (to a subnormal number or zero when that is its size). Rarely used: slower than cross's reciprocals.
+template <int N>
+Vec<N> cross_rescaled(const std::array<Vec<N>, N - 1>& v) {
+  double a[N][N - 1];
+  int perm[N];
+  int exponent = 0;
+  for (int k = 0; k < N - 1; ++k) {
+    const double largest = v[k].cwiseAbs().maxCoeff();
+    if (largest == 0.0) return Vec<N>::Zero();
+    const int e = std::ilogb(largest);
+    exponent += e;
+    for (int i = 0; i < N; ++i) a[i][k] = std::ldexp(v[k][i], -e);
+  }
+  for (int i = 0; i < N; ++i) perm[i] = i;
+  double scale = (N % 2 == 1) ? 1.0 : -1.0;
+  for (int k = 0; k < N - 1; ++k) {
+    int pivot = k;
+    for (int i = k + 1; i < N; ++i)
+      if (std::abs(a[i][k]) > std::abs(a[pivot][k])) pivot = i;
+    if (a[pivot][k] == 0.0) return Vec<N>::Zero();
+    for (int j = 0; j < N - 1; ++j) std::swap(a[k][j], a[pivot][j]);
+    std::swap(perm[k], perm[pivot]);
+    if (pivot != k) scale = -scale;
+    // The pivot's own exponent moves to `exponent`, so that `scale` stays near 1 whatever the pivots.
+    const int e = std::ilogb(a[k][k]);
+    exponent += e;
+    scale *= std::ldexp(a[k][k], -e);
+    for (int i = k + 1; i < N; ++i) {
+      const double factor = a[i][k] / a[k][k];
+      a[i][k] = factor;
+      for (int j = k + 1; j < N - 1; ++j) a[i][j] -= factor * a[k][j];
+    }
+  }
+  double l[N] = {};
+  l[N - 1] = 1.0;
+  for (int i = N - 2; i >= 0; --i) {
+    double sum = 0.0;
+    for (int j = i + 1; j < N; ++j) sum += a[j][i] * l[j];
+    l[i] = -sum;
+  }
+  Vec<N> c;
+  for (int i = 0; i < N; ++i) c[perm[i]] = std::ldexp(scale * l[i], exponent);
   return c;
 }
 

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "dfvn/core/direction.hpp"
 #include "dfvn/core/hash.hpp"
 #include "dfvn/field/cross_product.hpp"
 #include "dfvn/noise/noise_domain.hpp"
@@ -243,7 +244,7 @@ DfvnField<N>::DfvnField(std::uint64_t seed, const FieldOptions& options)
     }
     if (!t.stretch_direction.empty()) {
       for (int j = 0; j < N; ++j) stretch_u_[j] = t.stretch_direction[j];
-      stretch_u_ /= stretch_u_.norm();
+      stretch_u_ = unit_direction<N>(stretch_u_);
       stretch_s_minus_1_ = t.stretch_factor - 1.0;
     }
   }

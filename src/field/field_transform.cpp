@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
+#include "dfvn/core/direction.hpp"
 #include "dfvn/core/message_text.hpp"
 #include "dfvn/io/csv.hpp"
 #include "dfvn/io/png.hpp"
@@ -30,7 +32,7 @@ std::vector<double> parse_reals(std::string_view text, std::string_view what) {
     const auto [ptr, error] = std::from_chars(begin, item.data() + item.size(), value);
     if (item.empty() || error != std::errc{} || ptr != item.data() + item.size() || !std::isfinite(value))
       throw std::invalid_argument(
-          fmt::format("{}: '{}' is not a finite real number", what, quote_for_message(std::string(item))));
+          fmt::format("{}: {} is not a finite real number", what, quote_for_message(std::string(item))));
     values.push_back(value);
     if (comma == std::string_view::npos) return values;
     at = comma + 1;
@@ -126,6 +128,23 @@ class SplineHeight final : public HeightField {
     return h;
   }
 
+  // A bound on |dh/dx| and |dh/dy|: along an axis the spline's derivative is a convex combination of its
+  // control points' differences times the cells per unit length. Infinite when a control point is not
+  // finite (heights near the largest double).
+  double max_slope() const {
+    double steepest = 0.0;
+    for (int i = 0; i < rows_; ++i)
+      for (int j = 0; j < columns_; ++j) {
+        const double c = control_[static_cast<std::size_t>(i) * columns_ + j];
+        if (!std::isfinite(c)) return std::numeric_limits<double>::infinity();
+        if (j + 1 < columns_)
+          steepest = std::max(steepest, std::abs(control_[static_cast<std::size_t>(i) * columns_ + j + 1] - c) * (columns_ - 1));
+        if (i + 1 < rows_)
+          steepest = std::max(steepest, std::abs(control_[static_cast<std::size_t>(i + 1) * columns_ + j] - c) * (rows_ - 1));
+      }
+    return steepest;
+  }
+
  private:
   // The uniform cubic B-spline's four weights at u in [0, 1) and their derivatives.
   static void weights(double u, double w[4], double d[4]) {
@@ -161,17 +180,28 @@ class SplineHeight final : public HeightField {
   std::vector<double> control_;
 };
 
+// The steepest |dh/dx_j| of a lift's height (a bound for npy: its spline's control points' largest
+// difference along an axis times the cells per unit length, since the spline's derivative is a convex
+// combination of those differences).
+double lift_max_slope(const LiftSpec& lift) {
+  switch (lift.kind) {
+    case LiftSpec::Kind::plane: return std::max(std::abs(lift.parameters[0]), std::abs(lift.parameters[1]));
+    case LiftSpec::Kind::bump:  // the hill's steepest slope, plus the plane's it may sit on (an upper bound then)
+      return 96.0 / (25.0 * std::sqrt(5.0)) * (std::abs(lift.parameters[0]) / lift.parameters[1]) +
+             (lift.parameters.size() == 6 ? std::max(std::abs(lift.parameters[4]), std::abs(lift.parameters[5])) : 0.0);
+    case LiftSpec::Kind::npy: return lift.grid ? lift.grid->max_slope : 0.0;
+    case LiftSpec::Kind::none: break;
+  }
+  return 0.0;
+}
+
 }  // namespace
 
 void NoiseTransform::validate() const {
   if (!stretch_direction.empty()) {
-    double norm2 = 0.0;
-    for (double v : stretch_direction) {
+    for (double v : stretch_direction)
       if (!std::isfinite(v)) throw std::invalid_argument("--stretch: the direction must be finite");
-      norm2 += v * v;
-    }
-    if (!(norm2 > 0.0) || !std::isfinite(norm2))
-      throw std::invalid_argument("--stretch: the direction must not be zero");
+    if (!is_direction(stretch_direction)) throw std::invalid_argument("--stretch: the direction must not be zero");
     if (!(stretch_factor >= kMinStretch && stretch_factor <= kMaxStretch))
       throw std::invalid_argument(
           fmt::format("--stretch: the factor S must be in [1e-6, 1e6] (S > 0), got {}", stretch_factor));
@@ -182,7 +212,9 @@ void NoiseTransform::validate() const {
       throw std::invalid_argument("--lift and --time both read the noise's third dimension: give one of them");
     for (double p : lift.parameters)
       if (!std::isfinite(p)) throw std::invalid_argument("--lift: every parameter must be finite");
-    if (!std::isfinite(lift.ramp)) throw std::invalid_argument("--lift-ramp must be finite");
+    if (!(std::abs(lift.ramp) <= kMaxLiftRamp))
+      throw std::invalid_argument(fmt::format("--lift-ramp must be in [-2^50, 2^50] = [{:g}, {:g}], got {:g}",
+                                              -kMaxLiftRamp, kMaxLiftRamp, lift.ramp));
     if (lift.kind == LiftSpec::Kind::plane && lift.parameters.size() != 2)
       throw std::invalid_argument("--lift plane:SX,SY takes two slopes");
     if (lift.kind == LiftSpec::Kind::bump && lift.parameters.size() != 4 && lift.parameters.size() != 6)
@@ -191,7 +223,13 @@ void NoiseTransform::validate() const {
     if (lift.kind == LiftSpec::Kind::npy && (!lift.grid || lift.grid->rows < 2 || lift.grid->columns < 2))
       throw std::invalid_argument("--lift npy:FILE: the height grid needs at least 2 rows and 2 columns");
     if (lift.kind == LiftSpec::Kind::bump && !(lift.parameters[1] > 0.0))
-      throw std::invalid_argument(fmt::format("--lift bump: the radius R must be positive, got {}", lift.parameters[1]));
+      throw std::invalid_argument(fmt::format("--lift bump: the radius R must be positive, got {:g}", lift.parameters[1]));
+    const double slope = lift_max_slope(lift);
+    if (!(slope <= kMaxLiftSlope))
+      throw std::invalid_argument(fmt::format(
+          "--lift {}: the height's steepest slope is {}, above 2^50 = {:g} (the noise would vanish below its rounding)",
+          lift.kind == LiftSpec::Kind::plane ? "plane:SX,SY" : lift.kind == LiftSpec::Kind::bump ? "bump:H,R (96 / (25 sqrt 5) |H| / R)" : "npy",
+          std::isfinite(slope) ? fmt::format("{:g}", slope) : "beyond the largest double", kMaxLiftSlope));
   }
 }
 
@@ -218,7 +256,7 @@ void check_transform_available(const NoiseTransform& transform, int dimension, b
 void parse_stretch(std::string_view text, NoiseTransform& transform) {
   const std::size_t colon = text.rfind(':');
   if (colon == std::string_view::npos)
-    throw std::invalid_argument(fmt::format("--stretch takes U:S (a direction and a factor, e.g. 1,0:2), got '{}'",
+    throw std::invalid_argument(fmt::format("--stretch takes U:S (a direction and a factor, e.g. 1,0:2), got {}",
                                             quote_for_message(std::string(text))));
   transform.stretch_direction = parse_reals(text.substr(0, colon), "--stretch direction");
   const std::vector<double> factor = parse_reals(text.substr(colon + 1), "--stretch factor");
@@ -286,7 +324,9 @@ LiftSpec parse_lift(std::string_view text) {
     if (spec.path.empty()) throw std::invalid_argument("--lift npy:FILE: the file name is missing");
     try {
       NpyMatrix matrix = read_npy_matrix(spec.path);
-      spec.grid = std::make_shared<const HeightGrid>(HeightGrid{matrix.rows, matrix.columns, std::move(matrix.values)});
+      HeightGrid grid{matrix.rows, matrix.columns, std::move(matrix.values)};
+      if (grid.rows >= 2 && grid.columns >= 2) grid.max_slope = SplineHeight(grid).max_slope();
+      spec.grid = std::make_shared<const HeightGrid>(std::move(grid));
     } catch (const InputError& e) {
       throw std::invalid_argument(fmt::format("--lift npy:{}: {}", quote_for_message(spec.path), e.what()));
     }
@@ -300,7 +340,7 @@ LiftSpec parse_lift(std::string_view text) {
   else if (name == "bump")
     spec.kind = LiftSpec::Kind::bump;
   else
-    throw std::invalid_argument(fmt::format("--lift takes plane:SX,SY, bump:H,R[,CX,CY[,SX,SY]] or npy:FILE, got '{}'",
+    throw std::invalid_argument(fmt::format("--lift takes plane:SX,SY, bump:H,R[,CX,CY[,SX,SY]] or npy:FILE, got {}",
                                             quote_for_message(std::string(text))));
   if (colon == std::string_view::npos) throw std::invalid_argument(fmt::format("--lift {}: its parameters are missing", name));
   spec.parameters = parse_reals(text.substr(colon + 1), fmt::format("--lift {}", name));
@@ -355,7 +395,7 @@ std::shared_ptr<const NoiseFunctions<N>> make_transformed_noise(NoiseBasis basis
   if (!transform.stretch_direction.empty()) {
     Vec<N> u;
     for (int j = 0; j < N; ++j) u[j] = transform.stretch_direction[j];
-    noise = std::make_shared<const StretchedNoise<N>>(noise, u / u.norm(), transform.stretch_factor);
+    noise = std::make_shared<const StretchedNoise<N>>(noise, unit_direction<N>(u), transform.stretch_factor);
   }
   return noise;
 }

@@ -29,8 +29,9 @@ inline constexpr double kMaxStretch = 1e6;
 //                 A = I + (sqrt(1 + |grad h|^2) - 1) n n^T along n = grad h / |grad h|, up to a rotation
 //                 of the noise: F is read at (x, grad h . x));
 // - bump:H,R[,CX,CY[,SX,SY]]  h(x) = H (1 - r^2)^3 for r = |x - (CX, CY)| / R < 1, else 0 (value, slope and
-//                 curvature 0 at r = 1, so C2; a polynomial in r^2, so smooth at the centre); R > 0; with SX, SY
-//                 the bump sits on the plane SX x + SY y (the paper's Figure 9: a slope with a hill in its middle).
+//                 curvature 0 at r = 1, so C2; a polynomial in r^2, so smooth at the centre); R > 0; its
+//                 steepest slope is 96 / (25 sqrt 5) |H| / R (at r = 1 / sqrt 5); with SX, SY the bump sits on
+//                 the plane SX x + SY y (the paper's Figure 9: a slope with a hill in its middle).
 // - npy:FILE      a 2D float64/float32 array (rows, columns) from a .npy file, each side 2..65536, every
 //                 element finite, heights in length units. Element (i, j) is the height at x = j / (columns - 1),
 //                 y = i / (rows - 1): the columns run along x and the rows along y over the unit square [0, 1]^2,
@@ -43,7 +44,16 @@ struct HeightGrid {
   int rows = 0;
   int columns = 0;
   std::vector<double> values;  // rows x columns, element (i, j) at i * columns + j
+  double max_slope = 0.0;      // a bound on |dh/dx| and |dh/dy| of its spline (parse_lift computes it)
 };
+
+// The steepest slope |dh/dx_j| of a lift's height and |--lift-ramp| are at most 2^50. In the basis's
+// units grad f = grad_xy F + (dF/dz + ramp) grad h: beyond 2^50 (times the noise's own O(1) gradient) the
+// noise's part is within a few units in the last place of the slope's term, so the field would be the
+// slope's alone; within it every value the field computes is finite (the heights are bounded by the noise
+// domain, |F h| < 2^50, and ramp x slope by 2^100).
+inline constexpr double kMaxLiftSlope = 0x1p50;
+inline constexpr double kMaxLiftRamp = 0x1p50;
 
 struct LiftSpec {
   enum class Kind { none, plane, bump, npy } kind = Kind::none;

@@ -52,12 +52,16 @@ struct TraceStats {
   // Steps that reached beyond the edge of the noise domain (noise/noise_domain.hpp), and evaluations
   // there: a trace stops before such a step, at the last point whose step stayed inside.
   std::int64_t outside_domain = 0;
+  // Traces that stopped so: their end is not where the trace would have gone (trace_table does not
+  // accept it as an end: a bounded run retraces or keeps the point at its start, a dropping run drops it).
+  std::int64_t stopped_at_edge = 0;
 
   TraceStats& operator+=(const TraceStats& other) {
     field_evaluations += other.field_evaluations;
     reprojection_updates += other.reprojection_updates;
     skipped_updates += other.skipped_updates;
     outside_domain += other.outside_domain;
+    stopped_at_edge += other.stopped_at_edge;
     return *this;
   }
 };

@@ -143,6 +143,7 @@ Vec<N> Tracer<N>::trace_with(const Tracer& self, const Vec<N>& x0, double time, 
     // point outside the domain computed from the zero field beyond it.
     if (stats.outside_domain != outside_before || !self.field_.in_domain(x)) [[unlikely]] {
       if (stats.outside_domain == outside_before) ++stats.outside_domain;
+      ++stats.stopped_at_edge;
       return before_step;
     }
     const bool last = (k + 1 == steps);

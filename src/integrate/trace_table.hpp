@@ -31,7 +31,10 @@ struct TracedPoints {
 };
 
 // starts and end: count x N, row-major; end may be starts (each row is read before it is written).
-// accept(x) says whether an end point satisfies the constraint.
+// accept(x) says whether an end point satisfies the constraint. A trace that stopped at the edge of the
+// noise domain (TraceStats::stopped_at_edge: a step that would have left it, e.g. a field of speed 1e15)
+// did not end where it was going, so it is never accepted either: retraced, then kept at its start and
+// counted, or dropped. (It was taken as an end: CNJ reported every point moved while none had.)
 template <int N, typename Accept>
 TracedPoints trace_table(const DfvnField<N>& field, const TraceOptions& options, const double* starts,
                          std::size_t rows, double* end, double time, const Accept& accept, OnReject on_reject,
@@ -57,14 +60,16 @@ TracedPoints trace_table(const DfvnField<N>& field, const TraceOptions& options,
 #pragma omp for schedule(dynamic, chunk)
     for (std::int64_t i = 0; i < count; ++i) {
       const Vec<N> x0 = Eigen::Map<const Vec<N>>(starts + i * N);
-      Vec<N> x = tracers[0].trace(x0, time, &local);
-      bool ok = accept(x);
+      Vec<N> x;
+      const auto ends_accepted = [&](const Tracer<N>& tracer) {
+        const std::int64_t stops = local.stopped_at_edge;
+        x = tracer.trace(x0, time, &local);
+        return local.stopped_at_edge == stops && accept(x);
+      };
+      bool ok = ends_accepted(tracers[0]);
       if (!ok && on_reject == OnReject::retrace) {
         ++retraced;
-        for (std::size_t k = 1; k < tracers.size() && !ok; ++k) {
-          x = tracers[k].trace(x0, time, &local);
-          ok = accept(x);
-        }
+        for (std::size_t k = 1; k < tracers.size() && !ok; ++k) ok = ends_accepted(tracers[k]);
         if (!ok) {
           x = x0;
           ok = true;

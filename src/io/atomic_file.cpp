@@ -9,7 +9,10 @@
 #include <filesystem>
 #include <iostream>
 #include <stdexcept>
+#include <dirent.h>
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -31,12 +34,12 @@ std::string temporary_name(const std::string& path) { return path + ".tmp." + st
 
 // ---- The registry of live temporaries, read by the signal handler ----
 // Fixed storage and lock-free atomics only: a handler may not allocate or lock. A slot is free (0),
-// being filled (1) or holds a path to remove (2); `directory` says how.
+// being filled (1) or holds a path to remove (2); `kind` says how.
 constexpr int kTemporarySlots = 64;
 constexpr std::size_t kMaxTemporaryPath = 4096;
 struct TemporarySlot {
   std::atomic<int> state{0};
-  bool directory = false;
+  TemporaryRegistration::Kind kind = TemporaryRegistration::Kind::file;
   char path[kMaxTemporaryPath];
 };
 TemporarySlot g_temporaries[kTemporarySlots];
@@ -47,13 +50,14 @@ static_assert(std::atomic<pid_t>::is_always_lock_free);
 
 // Returns the slot, or -1 when the path is too long or every slot is taken (then only the
 // destructor removes the temporary).
-int register_temporary(const std::string& path, bool directory = false) {
+int register_temporary(const std::string& path,
+                       TemporaryRegistration::Kind kind = TemporaryRegistration::Kind::file) {
   if (path.size() >= kMaxTemporaryPath) return -1;
   for (int i = 0; i < kTemporarySlots; ++i) {
     int expected = 0;
     if (g_temporaries[i].state.compare_exchange_strong(expected, 1)) {
       std::memcpy(g_temporaries[i].path, path.c_str(), path.size() + 1);
-      g_temporaries[i].directory = directory;
+      g_temporaries[i].kind = kind;
       g_temporaries[i].state.store(2);
       return i;
     }
@@ -65,17 +69,46 @@ void unregister_temporary(int slot) {
   if (slot >= 0) g_temporaries[slot].state.store(0);
 }
 
-// Async-signal-safe throughout: kill, waitpid, unlink and rmdir.
+// Unlinks every entry of the directory `path` (its files: a tree's directory holds no folders) and then
+// the directory, with system calls only (open, getdents64, unlinkat, rmdir: opendir may allocate). Another
+// thread of the program may still be creating a file in it while the handler runs (the signal can arrive
+// on any thread), so the directory is emptied again until rmdir succeeds, a bounded number of times.
+void remove_directory_tree(const char* path) {
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    const int fd = ::open(path, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) return;  // not created yet, or gone
+    alignas(8) char buffer[8192];
+    for (;;) {
+      const long bytes = ::syscall(SYS_getdents64, fd, buffer, sizeof buffer);
+      if (bytes <= 0) break;
+      for (long at = 0; at < bytes;) {
+        // struct linux_dirent64: d_ino (8), d_off (8), d_reclen (2), d_type (1), d_name
+        unsigned short record = 0;
+        std::memcpy(&record, buffer + at + 16, sizeof record);
+        const char* name = buffer + at + 19;
+        if (!(name[0] == '.' && (name[1] == '\0' || (name[1] == '.' && name[2] == '\0')))) ::unlinkat(fd, name, 0);
+        at += record;
+      }
+    }
+    ::close(fd);
+    if (::rmdir(path) == 0 || errno == ENOENT) return;
+  }
+}
+
+// Async-signal-safe throughout: kill, waitpid, unlink, rmdir and remove_directory_tree's calls.
 void remove_registered_temporaries() {
+  using Kind = TemporaryRegistration::Kind;
   if (const pid_t child = g_child.exchange(0); child > 0) {
     ::kill(child, SIGKILL);
     while (::waitpid(child, nullptr, 0) < 0 && errno == EINTR) {
     }
   }
   for (TemporarySlot& slot : g_temporaries)
-    if (slot.state.load() == 2 && !slot.directory) ::unlink(slot.path);
+    if (slot.state.load() == 2 && slot.kind == Kind::file) ::unlink(slot.path);
   for (TemporarySlot& slot : g_temporaries)
-    if (slot.state.load() == 2 && slot.directory) ::rmdir(slot.path);
+    if (slot.state.load() == 2 && slot.kind == Kind::directory) ::rmdir(slot.path);
+  for (TemporarySlot& slot : g_temporaries)
+    if (slot.state.load() == 2 && slot.kind == Kind::tree) remove_directory_tree(slot.path);
 }
 
 extern "C" void remove_temporaries_and_die(int signal_number) {
@@ -302,8 +335,7 @@ void check_outputs(const std::vector<std::pair<std::string, std::string>>& outpu
   for (const auto& [option, path] : outputs) check_writable(path);
 }
 
-TemporaryRegistration::TemporaryRegistration(const std::string& path, Kind kind)
-    : slot_(register_temporary(path, kind == Kind::directory)) {}
+TemporaryRegistration::TemporaryRegistration(const std::string& path, Kind kind) : slot_(register_temporary(path, kind)) {}
 
 TemporaryRegistration::~TemporaryRegistration() { unregister_temporary(slot_); }
 

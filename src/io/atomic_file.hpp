@@ -93,12 +93,16 @@ void check_outputs(const std::vector<std::pair<std::string, std::string>>& outpu
                    const std::vector<std::pair<std::string, std::string>>& inputs = {});
 
 // Temporaries that library code keeps outside AtomicOutput (the figures' gnuplot work directory and
-// its files): while a registration lives, the signal handlers and the exit handler of
-// remove_temporaries_on_signals() remove the path (directories after files, so a directory holding
-// only registered files goes too). The registration does not create or remove anything itself.
+// its files, sample --stream's bucket folder): while a registration lives, the signal handlers and the
+// exit handler of remove_temporaries_on_signals() remove the path: files first, then directories (so a
+// directory holding only registered files goes too), then trees. A tree is a directory removed with
+// every file in it, registered or not (sample --stream's thousands of bucket files): register it before
+// creating it, and it is removed at any moment of its filling. The registration does not create or
+// remove anything itself. There are 64 slots: a registration made when all are taken does nothing (its
+// owner's destructor still removes the path on ordinary exits).
 class TemporaryRegistration {
  public:
-  enum class Kind { file, directory };
+  enum class Kind { file, directory, tree };
   TemporaryRegistration(const std::string& path, Kind kind);
   ~TemporaryRegistration();
   TemporaryRegistration(const TemporaryRegistration&) = delete;

@@ -12,6 +12,9 @@
 #include <iterator>
 #include <sstream>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <fmt/format.h>
 
 #include "dfvn/core/message_text.hpp"
@@ -399,10 +402,19 @@ std::vector<PointTable> parse_point_sets(std::string_view bytes, InputFormat for
   throw std::logic_error("unknown input format");
 }
 
+void check_readable_file(const std::string& path) {
+  if (path == "-") return;
+  struct stat status {};
+  if (::stat(path.c_str(), &status) != 0) throw InputError(std::string("cannot read the file: ") + std::strerror(errno));
+  if (S_ISDIR(status.st_mode)) throw InputError("cannot read the file: it is a directory");
+  if (::access(path.c_str(), R_OK) != 0) throw InputError(std::string("cannot read the file: ") + std::strerror(errno));
+}
+
 std::string read_whole_file(const std::string& path) {
+  check_readable_file(path);
   // One read loop for files and pipes alike, in 1 MiB blocks: standard input costs what a file costs.
   std::FILE* file = path == "-" ? stdin : std::fopen(path.c_str(), "rb");
-  if (!file) throw InputError("cannot read the file");
+  if (!file) throw InputError(std::string("cannot read the file: ") + std::strerror(errno));
   std::string bytes;
   constexpr std::size_t kBlock = std::size_t{1} << 20;
   std::size_t used = 0;
@@ -414,7 +426,7 @@ std::string read_whole_file(const std::string& path) {
   }
   const bool failed = std::ferror(file) != 0;
   if (file != stdin) std::fclose(file);
-  if (failed) throw InputError(path == "-" ? "read error on standard input" : "read error");
+  if (failed) throw InputError(std::string(path == "-" ? "read error on standard input: " : "read error: ") + std::strerror(errno));
   bytes.resize(used);
   return bytes;
 }

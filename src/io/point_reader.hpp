@@ -48,6 +48,10 @@ struct NpyMatrix {
 NpyMatrix parse_npy_matrix(std::string_view bytes);
 NpyMatrix read_npy_matrix(const std::string& path);  // "-": standard input
 
+// Throws InputError saying why `path` ("-": standard input, always readable) cannot be read: missing,
+// a directory, no permission.
+void check_readable_file(const std::string& path);
+
 // Every byte of the file ("-": standard input). Throws InputError if it cannot be read.
 std::string read_whole_file(const std::string& path);
 

@@ -61,7 +61,7 @@ inline void check_noise_argument(double coordinate, double frequency, std::strin
 // Throws std::invalid_argument unless frequency is in [kMinNoiseFrequency, kMaxNoiseFrequency].
 inline void check_noise_frequency(double frequency, std::string_view what = "frequency") {
   if (!(frequency >= kMinNoiseFrequency && frequency <= kMaxNoiseFrequency))
-    throw std::invalid_argument(fmt::format("{} must be in [2^-50, 2^50] = [{:g}, {:g}], got {}", what,
+    throw std::invalid_argument(fmt::format("{} must be in [2^-50, 2^50] = [{:g}, {:g}], got {:g}", what,
                                             kMinNoiseFrequency, kMaxNoiseFrequency, frequency));
 }
 

@@ -1,6 +1,7 @@
 #include "dfvn/noise/noise_functions.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -37,6 +38,12 @@ std::string noise_basis_names() {
 
 void check_noise_phase(double phase) {
   if (!std::isfinite(phase)) throw std::invalid_argument(fmt::format("the phase must be a finite number of radians, got {}", phase));
+}
+
+double reduced_phase(double phase) {
+  check_noise_phase(phase);
+  if (std::abs(phase) <= std::numbers::pi) return phase;
+  return std::atan2(std::sin(phase), std::cos(phase));
 }
 
 template <int N>

@@ -81,4 +81,10 @@ std::shared_ptr<const NoiseFunctions<N>> make_periodic_noise_functions(NoiseBasi
 // Throws std::invalid_argument unless the phase is finite.
 void check_noise_phase(double phase);
 
+// The phase modulo 2 pi, in [-pi, pi]: the same field (the bases read only cos alpha and sin alpha, which
+// the C library computes with an exact reduction for any finite alpha), but a phase that a step can
+// still advance: 1e17 + 0.05 is 1e17, whose units in the last place are 16. Taken as atan2(sin, cos), so
+// it is the exact reduction to within an ulp of pi; a phase already in [-pi, pi] is returned as it is.
+double reduced_phase(double phase);
+
 }  // namespace dfvn

@@ -8,6 +8,7 @@
 #include <Eigen/LU>
 #include <fmt/format.h>
 
+#include "dfvn/core/direction.hpp"
 #include "dfvn/noise/quintic_fade.hpp"
 
 namespace dfvn {
@@ -29,13 +30,9 @@ void check_steer_spec(const SteerSpec& spec, int dimension) {
   if (!spec.direction.empty()) {
     if (static_cast<int>(spec.direction.size()) != dimension)
       throw std::invalid_argument(fmt::format("--steer-dir has {} components; the dimension is {}", spec.direction.size(), dimension));
-    double norm2 = 0.0;
-    for (double c : spec.direction) {
+    for (double c : spec.direction)
       if (!std::isfinite(c)) throw std::invalid_argument("--steer-dir has a non-finite component");
-      norm2 += c * c;
-    }
-    if (!(norm2 > 0.0) || !std::isfinite(norm2))
-      throw std::invalid_argument("--steer-dir must be a non-zero direction of finite length");
+    if (!is_direction(spec.direction)) throw std::invalid_argument("--steer-dir must be a non-zero direction");
   }
   const double isotropic = (4.0 - (dimension - 1) * kSteerEpsilon) / dimension;
   if (!(spec.k > 0.0 && spec.k <= 1.0 && spec.k < isotropic))
@@ -122,7 +119,7 @@ SteerableNoise<N>::SteerableNoise(std::uint64_t seed, double phase, const SteerS
   isotropic_ = (4.0 - (N - 1) * kSteerEpsilon) / N;
   if (!spec.direction.empty()) {
     for (int j = 0; j < N; ++j) u_[j] = spec.direction[j];
-    u_ /= u_.norm();
+    u_ = unit_direction<N>(u_);
     constant_metric_ = steer_metric<N>(u_, steer_k_);
   }
   if (spec.image) {

@@ -101,7 +101,7 @@ std::string claim_reading(const ConstructionsResult& r) {
   std::string md = fmt::format(
       "The issue's claim: the cross-product field (DFVN, bitangent) **with reprojection** has a lower end-point RMSE "
       "than curl noise on the same basis at equal integrator and steps. One cell per dimension, basis, integrator "
-      "and step count.\n\n**Verdict: {}** ({} of {} cells).\n",
+      "and step count.\n\n**Verdict: {}** (it holds in {} of {} cells).\n",
       holds ? "holds" : "does not hold", holding, cells.size());
   if (!holds) {
     md += "\nCells where it does not hold (reprojected RMSE >= curl RMSE), with the cross product's RMSE without "

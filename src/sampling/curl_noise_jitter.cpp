@@ -39,7 +39,7 @@ void CnjOptions::validate() const {
   cnj_trace_options(*this).validate();
   if (!(step_scale > 0.0 && step_scale <= kMaxStepScale))
     throw std::invalid_argument(fmt::format("step scale must be in (0, 2^20], got {:g}", step_scale));
-  check_noise_frequency(frequency);
+  check_noise_frequency(frequency, "--cycles-per-spacing (CNJ's frequency per lattice spacing)");
   check_noise_phase(phase);
   transform.validate();
   parse_noise_basis(to_string(noise));  // an unknown enum value throws

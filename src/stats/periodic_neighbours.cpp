@@ -74,21 +74,11 @@ std::vector<double> periodic_nearest_neighbour_distances(const PointSet& points,
   return periodic_nearest_neighbour_distances_of_first(points, points.size(), threads, progress);
 }
 
-std::vector<double> periodic_nearest_neighbour_distances_of_first(const PointSet& points, std::size_t queries, int threads,
-                                                                  const FractionProgress& progress) {
-  if (points.size() < 2) throw std::invalid_argument("nearest-neighbour statistics need at least 2 points");
-  if (queries > points.size()) throw std::invalid_argument("more query points than points");
-  check_in_periodic_box(points);
-  // Squared differences of huge or tiny coordinates overflow or underflow: compute at unit scale, exactly
-  // (stats/distance_scale.hpp), box and all.
-  double scale = domain_scale(points.domain.side);
-  if (scale == 1.0) scale = coordinate_scale(points);
-  if (scale != 1.0) {
-    std::vector<double> distances =
-        periodic_nearest_neighbour_distances_of_first(scaled_point_set(points, scale), queries, threads, progress);
-    for (double& d : distances) d *= scale;
-    return distances;
-  }
+namespace {
+
+// The search itself, on a set already at unit scale.
+std::vector<double> periodic_distances_at_scale(const PointSet& points, std::size_t queries, int threads,
+                                                const FractionProgress& progress) {
   std::vector<double> distances;
   if (queries > 0)
     distances = points.dimension == 1 ? periodic_distances_1d(points, queries)
@@ -96,6 +86,25 @@ std::vector<double> periodic_nearest_neighbour_distances_of_first(const PointSet
                                           return periodic_distances_kd_tree<N>(points, queries, threads, progress);
                                         });
   if (progress) progress(1.0);
+  return distances;
+}
+
+}  // namespace
+
+std::vector<double> periodic_nearest_neighbour_distances_of_first(const PointSet& points, std::size_t queries, int threads,
+                                                                  const FractionProgress& progress) {
+  if (points.size() < 2) throw std::invalid_argument("nearest-neighbour statistics need at least 2 points");
+  if (queries > points.size()) throw std::invalid_argument("more query points than points");
+  check_in_periodic_box(points);
+  // Squared differences of huge or tiny coordinates overflow or underflow: compute at unit scale, exactly
+  // (stats/distance_scale.hpp), box and all, with one scale: the box's when it is out of range, else the
+  // coordinates'. (Rescaling again after the first scaling went back and forth for ever when the two were
+  // far apart, points in [0, 1] of a box of side 1e300, and overflowed the stack.)
+  double scale = domain_scale(points.domain.side);
+  if (scale == 1.0) scale = coordinate_scale(points);
+  if (scale == 1.0) return periodic_distances_at_scale(points, queries, threads, progress);
+  std::vector<double> distances = periodic_distances_at_scale(scaled_point_set(points, scale), queries, threads, progress);
+  for (double& d : distances) d *= scale;
   return distances;
 }
 

@@ -301,19 +301,24 @@ RdfCurve radial_distribution(const PointSet& points, const RdfOptions& options, 
                              const FractionProgress& progress) {
   options.validate();
   // Volumes and squared distances of extreme domains overflow: compute at unit scale, where g is the
-  // same (it has no unit), and scale r back (stats/distance_scale.hpp).
+  // same (it has no unit), and scale r back (stats/distance_scale.hpp). One scale, the domain's or else the
+  // coordinates': scaling the scaled set again went back and forth for ever when the two were far apart
+  // (points in [0, 1] of a domain of side 1e300), and overflowed the stack.
   double scale = domain_scale(points.domain.side);
   if (scale == 1.0) scale = coordinate_scale(points);
-  if (scale != 1.0) {
+  const auto curve_of = [&](const PointSet& set, const RdfOptions& o) {
+    return dispatch_dimension(set.dimension, [&]<int N>() { return radial_distribution_impl<N>(set, o, seed, threads, progress); });
+  };
+  RdfCurve curve;
+  if (scale == 1.0) {
+    curve = curve_of(points, options);
+  } else {
     RdfOptions scaled = options;
     scaled.r_max /= scale;
-    RdfCurve curve = radial_distribution(scaled_point_set(points, scale), scaled, seed, threads, progress);
+    curve = curve_of(scaled_point_set(points, scale), scaled);
     for (double& r : curve.r) r *= scale;
     curve.r_max *= scale;
-    return curve;
   }
-  RdfCurve curve = dispatch_dimension(
-      points.dimension, [&]<int N>() { return radial_distribution_impl<N>(points, options, seed, threads, progress); });
   if (progress) progress(1.0);
   return curve;
 }

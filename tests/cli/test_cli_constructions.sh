@@ -60,7 +60,7 @@ rmse = {(r["dim"], r["field"], r["noise"], r["integrator"], r["steps"], r["repro
 cells = [(k, v < rmse[(k[0], "curl", k[2], k[3], k[4], "none")]) for k, v in rmse.items()
          if k[1] == "dfvn" and k[5] == "gauss-newton"]
 held = sum(h for _, h in cells)
-verdict = f"**Verdict: {'holds' if held == len(cells) else 'does not hold'}** ({held} of {len(cells)} cells)."
+verdict = f"**Verdict: {'holds' if held == len(cells) else 'does not hold'}** (it holds in {held} of {len(cells)} cells)."
 if len(cells) != 32 or verdict not in md:
     problems.append(f"expected the line {verdict!r} in constructions.md: {re.findall(r'.*Verdict.*', md)}")
 if "none exists" not in md:

@@ -78,7 +78,7 @@ SHARED = {
     "--step-scale": ["cnj trace time t = c * dbar(n) * lattice spacing"],
     "--lattice": ["start lattice"],
     "--frames": ["frames f, frame 0 included"],
-    "--phase-step": ["phase step da in radians per frame, in (0, 2 pi]"],
+    "--phase-step": ["phase step da in radians per frame, in [2^-30, 2 pi]"],
     "--width": ["image width in pixels"],
     "--trace-time": ["trace time t of every", "rms |c| = 1: unit lengths"],
     "--rk4-steps": ["rk4 steps per trace, each followed by gauss-newton reprojection"],

@@ -54,6 +54,30 @@ TYPED_TEST(CrossProductTest, RankDeficientInputGivesZero) {
   EXPECT_EQ(cross<N>(zeros), Vec<N>::Zero());
 }
 
+// Issue 40: vectors of subnormal size (the gradients at the centre of an obstacle of radius 1e-310) gave
+// Inf and NaN (the pivot's reciprocal overflowed). cross is linear in each vector: scaling v_k by 2^-e_k
+// scales the product by 2^-(sum e_k), exactly while nothing underflows, so each scaled product must be the
+// unscaled one times that power (to rounding), and products below the smallest double must be finite.
+TYPED_TEST(CrossProductTest, VectorsOfSubnormalSizeGiveTheScaledProduct) {
+  constexpr int N = TypeParam::value;
+  for (std::uint64_t i = 0; i < 50; ++i) {
+    const auto v = random_vectors<N>(i);
+    const Vec<N> c = cross<N>(v);
+    auto tiny = v;
+    tiny[0] *= 0x1p-1030;  // subnormal components: the first pivot's reciprocal is not finite
+    const Vec<N> scaled = cross<N>(tiny);
+    ASSERT_TRUE(scaled.allFinite()) << "N = " << N << ", i = " << i;
+    // 44 bits are left at 2^-1030: the rounding is below 2^-44 of c
+    const Vec<N> expected = scaled * 0x1p515 * 0x1p515;
+    EXPECT_LT((expected - c).norm(), 1e-12 * (1.0 + c.norm())) << "N = " << N << ", i = " << i;
+    for (auto& w : tiny) w *= 0x1p-1000;  // every vector tiny: the product underflows to zero, not NaN
+    EXPECT_TRUE(cross<N>(tiny).allFinite());
+    auto huge = v;
+    huge[0] *= 0x1p1000;  // large but representable: the product is the scaled one
+    EXPECT_LT((cross<N>(huge) * 0x1p-1000 - c).norm(), 1e-12 * (1.0 + c.norm()));
+  }
+}
+
 TEST(CrossProduct, ThreeDimensionsEqualsEigenCross) {
   for (std::uint64_t i = 0; i < 200; ++i) {
     const auto v = random_vectors<3>(i);

@@ -71,6 +71,9 @@ if [[ $DFVN_MAN_PAGE == 1 ]]; then
   for option in 'cycles\\-per\\-spacing' 'second\\-width' 'max\\-points' 'diagnose\\-points' 'spectrum\\-frequency'; do
     grep -q -- "$option" "$man_page" || fail "the man page does not show --${option//\\\\/}"
   done
+  # Issue 40: the exit codes (cmake/exit-status.h2m).
+  grep -q '^\.SH "EXIT STATUS"' "$man_page" && grep -q 'command line could not be parsed' "$man_page" ||
+    fail "the man page has no EXIT STATUS section"
   echo "ok: the man page"
 fi
 
