@@ -131,7 +131,8 @@ struct AnimationResult {
   double spacing = 0.0;          // 1 / K
   double trace_time = 0.0;       // t_cnj: frame 0's jitter
   double frame_time = 0.0;       // DA t_cnj: how far (RMS) the phase moves a particle per frame, both modes
-  int frame_steps = 1;           // RK4 steps per frame's trace (cnj: over t_cnj, as CNJ; advect: over DA t_cnj)
+  int frame_steps = 1;           // RK4 steps M per trace (cnj: CNJ's, each at most t_cnj / M and half the
+                                 // transition width long; advect: over DA t_cnj)
   double field_frequency = 0.0;  // cycles per unit length
   // frames x particles x N, row-major; a particle outside the domain in a frame is a row of NaN.
   std::vector<double> positions;

@@ -121,8 +121,10 @@ std::string animation_summary(const AnimationResult& result) {
       to_string(o.mode),
       advect ? fmt::format("frame 0 is CNJ, frame k is frame k-1 traced for a frame time of {} ({} RK4 step(s))",
                            format_real(result.frame_time), result.frame_steps)
-             : fmt::format("frame k is CNJ of the start sites at phase alpha_k (trace time {}, {} RK4 step(s))",
-                           format_real(result.trace_time), result.frame_steps),
+             : fmt::format("frame k is CNJ of the start sites at phase alpha_k (trace time {}, RK4 steps of at most "
+                           "1/{} of it and {} long)",
+                           format_real(result.trace_time), result.frame_steps,
+                           format_real(animation_trace_options(o).max_step_length, 4)),
       format_real(o.start_phase), format_real(o.phase_step));
   text += fmt::format("inside per frame: {}..{}; entered {}, left {} ({} popping events per 100 frames)", lo, hi, entered,
                       left, format_real(result.popping_per_100_frames(), 4));
