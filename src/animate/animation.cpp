@@ -10,8 +10,10 @@
 
 #include "dfvn/core/message_text.hpp"
 #include "dfvn/core/parallel.hpp"
+#include "dfvn/core/quantile.hpp"
 #include "dfvn/integrate/trace_table.hpp"
 #include "dfvn/noise/noise_functions.hpp"
+#include "dfvn/stats/point_set_statistics.hpp"
 
 namespace dfvn {
 
@@ -22,6 +24,20 @@ StartLattice parse_start_lattice(std::string_view name) {
 }
 
 std::string_view to_string(StartLattice lattice) { return lattice == StartLattice::cubic ? "cubic" : "bcc"; }
+
+AnimationMode parse_animation_mode(std::string_view name) {
+  if (name == "cnj") return AnimationMode::cnj;
+  if (name == "advect") return AnimationMode::advect;
+  throw std::invalid_argument("unknown animation mode " + quote_for_message(name) + " (allowed: cnj, advect)");
+}
+
+std::string_view to_string(AnimationMode mode) {
+  switch (mode) {
+    case AnimationMode::cnj: return "cnj";
+    case AnimationMode::advect: return "advect";
+  }
+  return "?";
+}
 
 namespace {
 
@@ -94,6 +110,7 @@ void AnimationOptions::validate() const {
   // The last frame's phase must stay finite and exact enough to turn the gradients.
   check_noise_phase(start_phase + phase_step * frames);
   parse_start_lattice(to_string(lattice));
+  parse_animation_mode(to_string(mode));
   if (drop_margin < 0 || drop_margin > kMaxDropMargin)
     throw std::invalid_argument(fmt::format("drop margin must be in [0, {}] lattice spacings, got {}", kMaxDropMargin, drop_margin));
   if (cnj.domain == DomainKind::torus)
@@ -122,8 +139,20 @@ void AnimationOptions::validate() const {
 }
 
 int animation_frame_steps(const AnimationOptions& options) {
+  if (options.mode == AnimationMode::cnj) return cnj_steps(options.cnj);
   const double steps = std::ceil(cnj_steps(options.cnj) * options.phase_step - 1e-12);
   return std::max(1, static_cast<int>(steps));
+}
+
+TraceOptions animation_trace_options(const AnimationOptions& options) {
+  TraceOptions trace = cnj_trace_options(options.cnj);
+  trace.policy = TracePolicy::continuous;
+  // Steps of at most half the bound's transition width w, the field's finest length scale: there Eq. (13)
+  // turns the noise into the boundary function and the velocity and its gradient peak. With w itself,
+  // one-step traces near the cube's edges still end erratically; w / 2 costs 1.3x as much
+  // (data/animation_continuity.md).
+  trace.max_step_length = 0.5 * cnj_transition_width(options.cnj, LatticeSpec{options.dimension, options.grid, Protocol::fair});
+  return trace;
 }
 
 std::vector<double> animation_start_sites(const AnimationOptions& options) {
@@ -156,7 +185,94 @@ double AnimationResult::popping_per_100_frames() const {
   return 100.0 * events / static_cast<double>(frames.size() - 1);
 }
 
+double AnimationResult::mean_spacing() const {
+  const int n = options.dimension;
+  const double measure = Domain::unit(options.cnj.domain).measure(n);
+  const double inside = frames.empty() ? 0.0 : static_cast<double>(frames[0].inside);
+  return inside > 0.0 ? std::pow(measure / inside, 1.0 / n) : std::numeric_limits<double>::quiet_NaN();
+}
+
+PackingSummary summarise_packing(const AnimationResult& result) {
+  PackingSummary s;
+  if (result.frames.empty()) return s;
+  // The 1% quantile in mean spacings: nn_median_scaled / nn_median is 1 / the frame's mean spacing.
+  const auto q01_scaled = [](const FrameStats& f) { return f.nn_q01 * f.nn_median_scaled / f.nn_median; };
+  s.median_0 = result.frames[0].nn_median_scaled;
+  s.q01_0 = q01_scaled(result.frames[0]);
+  s.median_min = s.q01_min = std::numeric_limits<double>::infinity();
+  s.median_max = s.q01_max = -std::numeric_limits<double>::infinity();
+  double sum = 0.0;
+  int counted = 0;
+  for (const FrameStats& f : result.frames) {
+    if (std::isnan(f.nn_median_scaled)) continue;
+    const double median = f.nn_median_scaled / s.median_0, q01 = q01_scaled(f) / s.q01_0;
+    sum += median;
+    ++counted;
+    if (median < s.median_min) s.median_min = median, s.median_min_frame = f.frame;
+    if (q01 < s.q01_min) s.q01_min = q01, s.q01_min_frame = f.frame;
+    s.median_max = std::max(s.median_max, median);
+    s.q01_max = std::max(s.q01_max, q01);
+  }
+  s.median_mean = counted > 0 ? sum / counted : std::numeric_limits<double>::quiet_NaN();
+  return s;
+}
+
 namespace {
+
+MoveSummary summarise_moves(const AnimationResult& a) {
+  const int n = a.options.dimension;
+  std::vector<double> moves;
+  for (int k = 1; k < a.options.frames; ++k) {
+    const double *before = a.frame(k - 1), *now = a.frame(k);
+    for (std::uint64_t i = 0; i < a.particles; ++i) {
+      if (std::isnan(before[i * n]) || std::isnan(now[i * n])) continue;
+      double d2 = 0.0;
+      for (int j = 0; j < n; ++j) d2 += (now[i * n + j] - before[i * n + j]) * (now[i * n + j] - before[i * n + j]);
+      moves.push_back(std::sqrt(d2));
+    }
+  }
+  MoveSummary s;
+  s.moves = moves.size();
+  if (moves.empty()) return s;
+  std::sort(moves.begin(), moves.end());
+  const double unit = a.mean_spacing();
+  s.median = median_of_sorted(moves) / unit;
+  s.p99 = quantile_of_sorted(moves, 0.99) / unit;
+  s.largest = moves.back() / unit;
+  return s;
+}
+
+// The packing of a frame's particles inside the domain (rows, particles x N; NaN rows skipped).
+void measure_packing(const double* rows, std::uint64_t particles, int n, const Domain& domain, int threads,
+                     FrameStats& stats) {
+  PointSet shown{n, {}, domain};
+  for (std::uint64_t i = 0; i < particles; ++i)
+    if (!std::isnan(rows[i * n])) shown.coordinates.insert(shown.coordinates.end(), rows + i * n, rows + (i + 1) * n);
+  if (shown.size() < 2) {
+    stats.nn_min = stats.nn_q01 = stats.nn_median = stats.nn_median_scaled = std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
+  const NearestNeighbourSummary nearest = summarize_nearest_neighbours(
+      nearest_neighbour_distances_in_domain(shown, KnnBackend::nanoflann, threads), shown);
+  stats.nn_min = nearest.min;
+  stats.nn_q01 = nearest.q01;
+  stats.nn_median = nearest.median;
+  stats.nn_median_scaled = nearest.median_scaled;
+}
+
+// The nearest point of the closed unit cube or its inscribed ball: a continuous map (the projection onto
+// a convex set), cnj mode's fallback for a conformant trace end outside the domain.
+template <int N>
+void move_into(const Domain& domain, Vec<N>& x) {
+  x = x.cwiseMax(0.0).cwiseMin(1.0);
+  if (domain.kind != DomainKind::ball) return;
+  // Onto the sphere, then towards the centre by a few ulps at a time until domain.contains agrees (the
+  // rounding of the scaled point may leave it just outside).
+  const Vec<N> from_centre = (x.array() - 0.5).matrix();
+  const double r = from_centre.norm();
+  for (double radius = 0.5; !domain.contains(x.data(), N) && r > 0.0; radius *= 1.0 - 0x1p-48)
+    x = (from_centre * (std::min(radius, r) / r)).array() + 0.5;
+}
 
 template <int N>
 AnimationResult run_animation(const AnimationOptions& options, std::uint64_t seed, int threads,
@@ -166,12 +282,12 @@ AnimationResult run_animation(const AnimationOptions& options, std::uint64_t see
   result.seed = seed;
   const CnjOptions& cnj = options.cnj;
   const bool conformant = cnj.domain_mode == DomainMode::conformant;
-  const bool ball = cnj.domain == DomainKind::ball;
+  const bool advect = options.mode == AnimationMode::advect;
   result.spacing = 1.0 / options.grid;
   result.trace_time = cnj.step_scale * average_neighbour_distance(N) * result.spacing;
   result.frame_time = options.phase_step * result.trace_time;
   result.frame_steps = animation_frame_steps(options);
-  const Domain domain = Domain::unit(ball ? DomainKind::ball : DomainKind::cube);
+  const Domain domain = Domain::unit(cnj.domain);
   // CNJ's field for this lattice (the torus and other field kinds are refused by validate()), turned to a phase.
   const FieldOptions field_options = cnj_field_options(cnj, result.spacing);
   const auto field_at = [&](double phase) {
@@ -180,14 +296,20 @@ AnimationResult run_animation(const AnimationOptions& options, std::uint64_t see
     return DfvnField<N>(seed, at);
   };
 
-  std::vector<double> current = animation_start_sites(options);
+  const std::vector<double> sites = animation_start_sites(options);
+  std::vector<double> current = sites;
   const std::size_t count = current.size() / N;
   result.particles = count;
   result.positions.assign(static_cast<std::size_t>(options.frames) * count * N, 0.0);
   result.frames.resize(static_cast<std::size_t>(options.frames));
   std::vector<unsigned char> was_inside(count, 0), inside(count, 0);
   const auto accept = [&](const Vec<N>& x) { return !conformant || domain.contains(x.data(), N); };
-  const OnReject on_reject = conformant ? OnReject::retrace : OnReject::drop;
+  // advect: CNJ's guarded traces, a conformant end outside retraced with more steps; cnj: the continuous
+  // trace map, ends outside reported (OnReject::drop writes them as traced) and moved into the domain below.
+  const OnReject on_reject = advect && conformant ? OnReject::retrace : OnReject::drop;
+  const TraceOptions cnj_trace = advect ? cnj_trace_options(cnj) : animation_trace_options(options);
+  TraceOptions frame_trace = cnj_trace;
+  frame_trace.steps = result.frame_steps;
 
   // alpha_0 modulo 2 pi: the same field, and a phase the steps advance (noise/noise_functions.hpp).
   const double start_phase = reduced_phase(options.start_phase);
@@ -195,19 +317,29 @@ AnimationResult run_animation(const AnimationOptions& options, std::uint64_t see
     const double phase = start_phase + k * options.phase_step;
     const DfvnField<N> field = field_at(phase);
     if (k == 0) result.field_frequency = field.frequency();
-    TraceOptions trace = cnj_trace_options(cnj);
-    if (k > 0) trace.steps = result.frame_steps;
-    // Frame 0: CNJ's jitter of the start sites; then one frame time per frame. The table is traced in
-    // place (trace_table reads each row before it writes it).
-    const std::vector<double> previous = current;
-    const TracedPoints traced = trace_table<N>(field, trace, previous.data(), count, current.data(),
-                                               k == 0 ? result.trace_time : result.frame_time, accept, on_reject,
-                                               threads, {});
     FrameStats& stats = result.frames[static_cast<std::size_t>(k)];
     stats.frame = k;
     stats.phase = phase;
+    const std::vector<double> previous = current;
+    // cnj: every frame is CNJ's jitter of the start sites. advect: frame 0 is, then one frame time per
+    // frame from the frame before. The table is traced in place (trace_table reads each row before it
+    // writes it).
+    const bool from_sites = !advect || k == 0;
+    const TracedPoints traced =
+        trace_table<N>(field, from_sites ? cnj_trace : frame_trace, from_sites ? sites.data() : previous.data(), count,
+                       current.data(), from_sites ? result.trace_time : result.frame_time, accept, on_reject, threads, {});
     stats.retraced = traced.retraced;
     stats.kept_at_start = traced.kept_at_start;
+    if (!advect && conformant) {
+      for (std::size_t i = 0; i < count; ++i) {
+        if (traced.accepted[i]) continue;
+        Eigen::Map<Vec<N>> x(current.data() + i * N);
+        Vec<N> moved = x;
+        move_into<N>(domain, moved);
+        x = moved;
+        ++stats.projected;
+      }
+    }
     double* out = result.positions.data() + static_cast<std::size_t>(k) * count * N;
     double sum2 = 0.0;
     std::uint64_t moved = 0;
@@ -233,9 +365,11 @@ AnimationResult run_animation(const AnimationOptions& options, std::uint64_t see
       }
     }
     stats.rms_move = moved > 0 ? std::sqrt(sum2 / static_cast<double>(moved)) : 0.0;
+    measure_packing(out, count, N, domain, threads, stats);
     was_inside.swap(inside);
     if (progress) progress(static_cast<double>(k + 1) / options.frames);
   }
+  result.moves = summarise_moves(result);
   return result;
 }
 

@@ -14,8 +14,10 @@
 namespace dfvn {
 
 std::string frame_csv_row(const FrameStats& s) {
-  return fmt::format("{},{},{},{},{},{},{},{},{}", s.frame, format_real(s.phase), s.inside, s.entered, s.left,
-                     format_real(s.largest_jump), format_real(s.rms_move), s.retraced, s.kept_at_start);
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}", s.frame, format_real(s.phase), s.inside, s.entered,
+                     s.left, format_real(s.largest_jump), format_real(s.rms_move), s.retraced, s.kept_at_start,
+                     s.projected, format_real(s.nn_min), format_real(s.nn_q01), format_real(s.nn_median),
+                     format_real(s.nn_median_scaled));
 }
 
 std::vector<int> strip_frames(int frames) {
@@ -99,29 +101,48 @@ void write_animation(const std::string& dir, const AnimationResult& result,
 }
 
 std::string animation_summary(const AnimationResult& result) {
-  std::uint64_t lo = result.particles, hi = 0, entered = 0, left = 0, kept = 0;
-  double jump = 0.0;
+  std::uint64_t lo = result.particles, hi = 0, entered = 0, left = 0, kept = 0, retraced = 0, projected = 0;
   for (const FrameStats& s : result.frames) {
     lo = std::min(lo, s.inside);
     hi = std::max(hi, s.inside);
     entered += s.entered;
     left += s.left;
     kept += s.kept_at_start;
-    jump = std::max(jump, s.largest_jump);
+    retraced += s.retraced;
+    projected += s.projected;
   }
   const AnimationOptions& o = result.options;
-  return fmt::format(
-      "{}D, {} frames, {} particles ({} lattice, {} mode in the {}), phase {}{} + k * {} rad, frame time {} ({} RK4 "
-      "step(s))\n"
-      "inside per frame: {}..{}; entered {}, left {} ({} popping events per 100 frames); largest jump {}; "
-      "kept at start {}\n",
-      o.dimension, o.frames, result.particles, to_string(o.lattice), to_string(o.cnj.domain_mode),
-      to_string(o.cnj.domain), format_real(o.start_phase),
+  const bool advect = o.mode == AnimationMode::advect;
+  const PackingSummary p = summarise_packing(result);
+  const MoveSummary& m = result.moves;
+  std::string text = fmt::format(
+      "{}D, {} frames, {} particles ({} lattice, {} mode in the {}), {} mode: {}; phase {}{} + k * {} rad\n",
+      o.dimension, o.frames, result.particles, to_string(o.lattice), to_string(o.cnj.domain_mode), to_string(o.cnj.domain),
+      to_string(o.mode),
+      advect ? fmt::format("frame 0 is CNJ, frame k is frame k-1 traced for a frame time of {} ({} RK4 step(s))",
+                           format_real(result.frame_time), result.frame_steps)
+             : fmt::format("frame k is CNJ of the start sites at phase alpha_k (trace time {}, RK4 steps of at most "
+                           "1/{} of it and {} long)",
+                           format_real(result.trace_time), result.frame_steps,
+                           format_real(animation_trace_options(o).max_step_length, 4)),
+      format_real(o.start_phase),
       reduced_phase(o.start_phase) == o.start_phase ? std::string()
                                                     : " (" + format_real(reduced_phase(o.start_phase)) + " modulo 2 pi)",
-      format_real(o.phase_step), format_real(result.frame_time),
-      result.frame_steps, lo, hi, entered, left, format_real(result.popping_per_100_frames(), 4), format_real(jump, 4),
-      kept);
+      format_real(o.phase_step));
+  text += fmt::format("inside per frame: {}..{}; entered {}, left {} ({} popping events per 100 frames)", lo, hi, entered,
+                      left, format_real(result.popping_per_100_frames(), 4));
+  text += advect ? fmt::format("; retraced {}, kept at start {}\n", retraced, kept)
+                 : fmt::format("; projected into the domain {}\n", projected);
+  text += fmt::format(
+      "packing: median nearest-neighbour distance {} mean spacings in frame 0, frames / frame 0: {}..{} (mean {}); "
+      "1% quantile {} in frame 0, frames / frame 0: {}..{}\n",
+      format_real(p.median_0, 4), format_real(p.median_min, 4), format_real(p.median_max, 4),
+      format_real(p.median_mean, 4), format_real(p.q01_0, 4), format_real(p.q01_min, 4), format_real(p.q01_max, 4));
+  if (m.moves == 0) return text + "per-frame moves: none (one frame)\n";
+  text += fmt::format("per-frame moves (frame 0's mean spacings): median {}, 99th percentile {} ({}x), largest {} ({}x)\n",
+                      format_real(m.median, 4), format_real(m.p99, 4), format_real(m.p99 / m.median, 4),
+                      format_real(m.largest, 4), format_real(m.largest / m.median, 4));
+  return text;
 }
 
 }  // namespace dfvn

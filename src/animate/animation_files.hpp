@@ -10,8 +10,10 @@
 
 namespace dfvn {
 
-// frames.csv's header: frame,phase,inside,entered,left,largest_jump,rms_move,retraced,kept_at_start.
-inline constexpr const char* kFrameColumns = "frame,phase,inside,entered,left,largest_jump,rms_move,retraced,kept_at_start";
+// frames.csv's header: FrameStats' fields in order.
+inline constexpr const char* kFrameColumns =
+    "frame,phase,inside,entered,left,largest_jump,rms_move,retraced,kept_at_start,projected,nn_min,nn_q01,nn_median,"
+    "nn_median_scaled";
 // One frames.csv row (no newline), reals through format_real.
 std::string frame_csv_row(const FrameStats& stats);
 

@@ -3,6 +3,7 @@
 #include "dfvn/core/message_text.hpp"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -34,6 +35,8 @@ std::string_view to_string(Reprojection reprojection) {
   return "?";
 }
 
+std::string_view to_string(TracePolicy rule) { return rule == TracePolicy::guarded ? "guarded" : "continuous"; }
+
 void TraceOptions::validate() const {
   if (steps < 1) throw std::invalid_argument("steps must be at least 1, got " + std::to_string(steps));
   if (reproject_iterations < 0)
@@ -44,6 +47,11 @@ void TraceOptions::validate() const {
   if (!std::isfinite(max_condition) || max_condition <= 1.0)
     throw std::invalid_argument("maximum condition number must be finite and > 1");
   if (!(max_update_ratio > 0.0)) throw std::invalid_argument("maximum update ratio must be > 0");
+  if (policy != TracePolicy::guarded && policy != TracePolicy::continuous)
+    throw std::invalid_argument("unknown trace policy");
+  if (!(max_step_length > 0.0)) throw std::invalid_argument("maximum step length must be > 0");
+  if (steps > std::numeric_limits<int>::max() / kMaxStepGrowth)
+    throw std::invalid_argument("steps must be at most " + std::to_string(std::numeric_limits<int>::max() / kMaxStepGrowth));
 }
 
 }  // namespace dfvn

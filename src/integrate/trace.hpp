@@ -13,11 +13,25 @@ namespace dfvn {
 
 enum class Integrator { euler, rk4 };
 enum class Reprojection { none, newton, gauss_newton };
+// How a trace steps and reprojects, a policy chosen once:
+//   guarded (CNJ's, every subcommand's but animate's): `steps` steps of time / steps; a reprojection
+//     update is taken only if it is at most max_update long and does not raise the residual, otherwise
+//     the reprojection stops there. The end point is a discontinuous function of the start and of the
+//     field (its phase): where a test flips, the trace switches branch.
+//   continuous (animate's frames, issue 46): every step at most time / steps and max_step_length long
+//     (at its first velocity), the last one taking the time that is left; every reprojection update
+//     taken, shortened to max_update where it is longer. Step lengths and updates are continuous
+//     functions of the position, so the end point is a continuous function of the start point and of
+//     the field: a lattice traced at neighbouring phases moves by little. Left discontinuous, and rare:
+//     a Jacobian above max_condition (its update is skipped in both policies) and the stop below
+//     residual_tolerance (a jump of at most that residual over the gradient, ~1e-13 lengths).
+enum class TracePolicy { guarded, continuous };
 
 Integrator parse_integrator(std::string_view name);      // "euler" | "rk4"
 Reprojection parse_reprojection(std::string_view name);  // "none" | "newton" | "gauss-newton"
 std::string_view to_string(Integrator integrator);
 std::string_view to_string(Reprojection reprojection);
+std::string_view to_string(TracePolicy rule);
 
 struct TraceOptions {
   Integrator integrator = Integrator::rk4;
@@ -37,6 +51,13 @@ struct TraceOptions {
   // comparable to the step, and 0.1 then rejects the corrections that keep traces on their contours
   // (tests/integrate/test_trace.cpp: drift 0.08-0.16 with 0.1, below 1e-13 with 1).
   double max_update_ratio = 1.0;
+  TracePolicy policy = TracePolicy::guarded;
+  // continuous: the longest step, in length units (at the step's first velocity); infinity: no limit.
+  double max_step_length = std::numeric_limits<double>::infinity();
+  // continuous: at most this many times `steps` steps per trace (the last takes the time left).
+  static constexpr int kMaxStepGrowth = 64;
+  // continuous: how many times a step's time may be shortened to its stages' speeds.
+  static constexpr int kLengthUpdates = 3;
 
   // Throws std::invalid_argument with a message naming the offending option.
   void validate() const;
@@ -49,6 +70,8 @@ struct TraceStats {
   // Updates not taken: rank-deficient or ill-conditioned Jacobian, non-finite, longer than
   // max_update_ratio x step, or raising the residual.
   std::int64_t skipped_updates = 0;
+  // TracePolicy::continuous: updates taken shortened to max_update_ratio x step.
+  std::int64_t shortened_updates = 0;
   // Steps that reached beyond the edge of the noise domain (noise/noise_domain.hpp), and evaluations
   // there: a trace stops before such a step, at the last point whose step stayed inside.
   std::int64_t outside_domain = 0;
@@ -60,6 +83,7 @@ struct TraceStats {
     field_evaluations += other.field_evaluations;
     reprojection_updates += other.reprojection_updates;
     skipped_updates += other.skipped_updates;
+    shortened_updates += other.shortened_updates;
     outside_domain += other.outside_domain;
     stopped_at_edge += other.stopped_at_edge;
     return *this;
@@ -97,9 +121,9 @@ class Tracer {
   TraceFunction trace_;
   ReprojectFunction reproject_;
 
-  template <Integrator I, Reprojection R>
+  template <Integrator I, Reprojection R, TracePolicy P>
   static Vec<N> trace_with(const Tracer&, const Vec<N>&, double, TraceStats&);
-  template <Reprojection R>
+  template <Reprojection R, TracePolicy P>
   static FieldSample<N> reproject_with(const Tracer&, Vec<N>&, const std::array<double, N - 1>&, double,
                                        TraceStats&);
 };

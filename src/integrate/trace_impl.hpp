@@ -46,22 +46,38 @@ FieldSample<N> evaluate_counted(const DfvnField<N>& field, const Vec<N>& x, Trac
 }
 
 template <int N>
-template <Reprojection R>
+template <Reprojection R, TracePolicy P>
 FieldSample<N> Tracer<N>::reproject_with(const Tracer& self, Vec<N>& x, const std::array<double, N - 1>& tau,
                                          double max_update, TraceStats& stats) {
   const TraceOptions& o = self.options_;
   FieldSample<N> sample = evaluate_counted<N, Velocity::skip>(self.field_, x, stats);
   double residual_now = iso_residual<N>(sample, tau);
-  // Takes x + step unless it is too long or raises the residual; false when it was not taken.
-  auto try_update = [&](const Vec<N>& step) {
-    if (!step.allFinite() || !(step.norm() <= max_update)) {
+  // guarded: takes x + step unless it is too long or raises the residual; false when it was not taken.
+  // continuous: takes x + step shortened to max_update (false only for a non-finite step).
+  auto try_update = [&](Vec<N> step) {
+    if constexpr (P == TracePolicy::continuous) {
+      const double length = step.norm();
+      if (!std::isfinite(length)) {
+        ++stats.skipped_updates;
+        return false;
+      }
+      if (length > max_update) {
+        step *= max_update / length;
+        ++stats.shortened_updates;
+      }
+    } else if (!step.allFinite() || !(step.norm() <= max_update)) {
       ++stats.skipped_updates;
       return false;
     }
     const Vec<N> candidate = x + step;
     FieldSample<N> moved = evaluate_counted<N, Velocity::skip>(self.field_, candidate, stats);
     const double residual_moved = iso_residual<N>(moved, tau);
-    if (!(residual_moved <= residual_now)) {
+    if constexpr (P == TracePolicy::guarded) {
+      if (!(residual_moved <= residual_now)) {
+        ++stats.skipped_updates;
+        return false;
+      }
+    } else if (!std::isfinite(residual_moved)) {  // beyond the noise domain's edge: stay inside it
       ++stats.skipped_updates;
       return false;
     }
@@ -96,14 +112,26 @@ FieldSample<N> Tracer<N>::reproject_with(const Tracer& self, Vec<N>& x, const st
         const double gradient2 = gradient.squaredNorm();
         const double error = sample.value[i] - tau[i];
         if (error == 0.0) continue;
-        const Vec<N> step = -gradient * (error / gradient2);
-        if (!(gradient2 > min_gradient2) || !step.allFinite() || !(step.norm() <= max_update)) {
+        Vec<N> step = -gradient * (error / gradient2);
+        if (!(gradient2 > min_gradient2) || !step.allFinite()) {
+          ++stats.skipped_updates;
+          continue;
+        }
+        if constexpr (P == TracePolicy::continuous) {
+          const double length = step.norm();
+          if (length > max_update) {
+            step *= max_update / length;
+            ++stats.shortened_updates;
+          }
+        } else if (!(step.norm() <= max_update)) {
           ++stats.skipped_updates;
           continue;
         }
         const Vec<N> candidate = x + step;
         FieldSample<N> moved = evaluate_counted<N, Velocity::skip>(self.field_, candidate, stats);
-        if (!(std::abs(moved.value[i] - tau[i]) <= std::abs(error))) {
+        const bool worse = P == TracePolicy::guarded ? !(std::abs(moved.value[i] - tau[i]) <= std::abs(error))
+                                                    : !std::isfinite(moved.value[i]);
+        if (worse) {
           ++stats.skipped_updates;
           continue;
         }
@@ -117,26 +145,65 @@ FieldSample<N> Tracer<N>::reproject_with(const Tracer& self, Vec<N>& x, const st
   return sample;  // its velocity is not computed: the callers that need it take cross<N>(gradient)
 }
 
+// One integration step from x over time h (negative: backwards), k1 the velocity at x: Euler's h k1
+// (Eq. 9) or RK4's h (k1 + 2 k2 + 2 k3 + k4) / 6. `fastest` gets the largest speed of its stages.
+template <int N, Integrator I>
+Vec<N> step_increment(const DfvnField<N>& field, const Vec<N>& x, const Vec<N>& k1, double h, TraceStats& stats,
+                      double& fastest) {
+  if constexpr (I == Integrator::euler) {
+    fastest = k1.norm();
+    return h * k1;
+  } else {
+    const Vec<N> k2 = evaluate_counted(field, Vec<N>(x + 0.5 * h * k1), stats).velocity;
+    const Vec<N> k3 = evaluate_counted(field, Vec<N>(x + 0.5 * h * k2), stats).velocity;
+    const Vec<N> k4 = evaluate_counted(field, Vec<N>(x + h * k3), stats).velocity;
+    fastest = std::max({k1.norm(), k2.norm(), k3.norm(), k4.norm()});
+    return (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+  }
+}
+
 template <int N>
-template <Integrator I, Reprojection R>
+template <Integrator I, Reprojection R, TracePolicy P>
 Vec<N> Tracer<N>::trace_with(const Tracer& self, const Vec<N>& x0, double time, TraceStats& stats) {
   const int steps = self.options_.steps;
-  const double h = time / steps;  // delta in Algorithm 1
+  // guarded: `steps` steps of delta = time / steps (Algorithm 1). continuous: steps of at most that
+  // time and at most max_step_length long at the step's first velocity, the last one taking the time
+  // that is left (and at most kMaxStepGrowth times `steps` of them): the step lengths are continuous
+  // in x, and where the count changes the extra step is of length 0, so the end stays continuous.
+  const double delta = time / steps;
+  const int max_steps = P == TracePolicy::continuous ? steps * TraceOptions::kMaxStepGrowth : steps;
+  double remaining = std::abs(time);
   Vec<N> x = x0;
   // The evaluation at x0 gives both the iso-values tau = f(x0) and the first velocity.
   FieldSample<N> current = evaluate_counted(self.field_, x, stats);
   const std::array<double, N - 1> tau = current.value;
-  for (int k = 0; k < steps; ++k) {
+  for (int k = 0; k < max_steps; ++k) {
     const Vec<N> before_step = x;
     const std::int64_t outside_before = stats.outside_domain;
-    if constexpr (I == Integrator::euler) {
-      x += h * current.velocity;  // Eq. (9)
+    bool last = (k + 1 == max_steps);
+    if constexpr (P == TracePolicy::continuous) {
+      // The step's time: at most what is left, delta, and the time that moves max_step_length at the
+      // largest of its stages' speeds. The stages depend on the time, so it is found by fixed-point
+      // updates h <- min(h, max_step_length / largest stage speed at h), at most kLengthUpdates of them;
+      // each is a continuous function of h and x, and an update that changes nothing ends the search
+      // (the next ones would not change it either).
+      const double limit = self.options_.max_step_length;
+      const auto by_length = [&](double speed, double otherwise) { return speed > 0.0 ? limit / speed : otherwise; };
+      double length = std::min({remaining, std::abs(delta), by_length(current.velocity.norm(), remaining)});
+      Vec<N> increment;
+      for (int update = 0;; ++update) {
+        double fastest = 0.0;
+        increment = step_increment<N, I>(self.field_, x, current.velocity, std::copysign(length, time), stats, fastest);
+        const double shorter = std::min(length, by_length(fastest, length));
+        if (!(shorter < length) || update + 1 == TraceOptions::kLengthUpdates) break;
+        length = shorter;
+      }
+      last = last || !(length < remaining);
+      remaining = last ? 0.0 : remaining - length;
+      x += increment;
     } else {
-      const Vec<N>& k1 = current.velocity;
-      const Vec<N> k2 = evaluate_counted(self.field_, Vec<N>(x + 0.5 * h * k1), stats).velocity;
-      const Vec<N> k3 = evaluate_counted(self.field_, Vec<N>(x + 0.5 * h * k2), stats).velocity;
-      const Vec<N> k4 = evaluate_counted(self.field_, Vec<N>(x + h * k3), stats).velocity;
-      x += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+      double fastest = 0.0;
+      x += step_increment<N, I>(self.field_, x, current.velocity, delta, stats, fastest);
     }
     // A step that reached beyond the edge of the noise domain (a stage evaluated there, or the step's
     // end) is not taken: the trace stops at the last point whose step stayed inside, rather than at a
@@ -146,16 +213,16 @@ Vec<N> Tracer<N>::trace_with(const Tracer& self, const Vec<N>& x0, double time, 
       ++stats.stopped_at_edge;
       return before_step;
     }
-    const bool last = (k + 1 == steps);
     if constexpr (R == Reprojection::none) {
       if (!last) current = evaluate_counted(self.field_, x, stats);
     } else {
       // The reprojection ends with an evaluation at the projected point: it is the next k1.
       const double max_update = self.options_.max_update_ratio * (x - before_step).norm();
-      current = reproject_with<R>(self, x, tau, max_update, stats);
+      current = reproject_with<R, P>(self, x, tau, max_update, stats);
       // The velocity at the projected point is the next k1; after the last step nobody needs it.
       if (!last) current.velocity = cross<N>(current.gradient);
     }
+    if (last) break;
   }
   return x;
 }
@@ -168,20 +235,31 @@ Tracer<N>::Tracer(const DfvnField<N>& field, const TraceOptions& options)
     throw std::invalid_argument(
         "curl noise has no reprojection (its streamlines are not intersections of iso-surfaces): "
         "use reprojection none with --field curl");
-  auto select = [&]<Integrator I>() -> TraceFunction {
+  auto select = [&]<Integrator I, TracePolicy P>() -> TraceFunction {
     switch (options_.reprojection) {
-      case Reprojection::none: return &trace_with<I, Reprojection::none>;
-      case Reprojection::newton: return &trace_with<I, Reprojection::newton>;
-      case Reprojection::gauss_newton: return &trace_with<I, Reprojection::gauss_newton>;
+      case Reprojection::none: return &trace_with<I, Reprojection::none, P>;
+      case Reprojection::newton: return &trace_with<I, Reprojection::newton, P>;
+      case Reprojection::gauss_newton: return &trace_with<I, Reprojection::gauss_newton, P>;
     }
     throw std::invalid_argument("unknown reprojection policy");
   };
-  trace_ = options_.integrator == Integrator::euler ? select.template operator()<Integrator::euler>()
-                                                    : select.template operator()<Integrator::rk4>();
+  auto select_rule = [&]<Integrator I>() -> TraceFunction {
+    return options_.policy == TracePolicy::guarded ? select.template operator()<I, TracePolicy::guarded>()
+                                                       : select.template operator()<I, TracePolicy::continuous>();
+  };
+  trace_ = options_.integrator == Integrator::euler ? select_rule.template operator()<Integrator::euler>()
+                                                    : select_rule.template operator()<Integrator::rk4>();
+  const bool guarded = options_.policy == TracePolicy::guarded;
   switch (options_.reprojection) {
-    case Reprojection::none: reproject_ = &reproject_with<Reprojection::none>; break;
-    case Reprojection::newton: reproject_ = &reproject_with<Reprojection::newton>; break;
-    case Reprojection::gauss_newton: reproject_ = &reproject_with<Reprojection::gauss_newton>; break;
+    case Reprojection::none: reproject_ = &reproject_with<Reprojection::none, TracePolicy::guarded>; break;
+    case Reprojection::newton:
+      reproject_ = guarded ? &reproject_with<Reprojection::newton, TracePolicy::guarded>
+                           : &reproject_with<Reprojection::newton, TracePolicy::continuous>;
+      break;
+    case Reprojection::gauss_newton:
+      reproject_ = guarded ? &reproject_with<Reprojection::gauss_newton, TracePolicy::guarded>
+                           : &reproject_with<Reprojection::gauss_newton, TracePolicy::continuous>;
+      break;
   }
 }
 

@@ -90,7 +90,7 @@ std::vector<std::string> figure8_output_files() {
 namespace {
 
 struct RunSummary {
-  std::uint64_t lo = 0, hi = 0, entered = 0, left = 0, retraced = 0, kept = 0, popping_frames = 0;
+  std::uint64_t lo = 0, hi = 0, entered = 0, left = 0, retraced = 0, kept = 0, projected = 0, popping_frames = 0;
   double popping = 0.0, largest_jump = 0.0, mean_rms_move = 0.0;
   std::uint64_t in_layer = 0;  // frames whose largest jump started within the transition width of the boundary
 };
@@ -130,6 +130,7 @@ RunSummary summarise(const AnimationResult& a) {
     s.left += f.left;
     s.retraced += f.retraced;
     s.kept += f.kept_at_start;
+    s.projected += f.projected;
     if (f.frame > 0) {
       s.popping_frames += f.entered + f.left > 0;
       s.largest_jump = std::max(s.largest_jump, f.largest_jump);
@@ -148,7 +149,8 @@ std::string figure8_markdown(const Figure8Result& result) {
   std::string md = "# Figure 8: curl noise jittering animated, drop mode against the conformant field\n\n";
   md += fmt::format(
       "Made by `dfvn-sample reproduce figure8 --frames {} --phase-step {} --grid-2d {} --grid-3d {} --lattice-3d {} "
-      "--drop-margin {} --seed {}`: {} frames (frame 0 is CNJ's jitter of the start set, then {} frame steps of {} rad each, so the "
+      "--drop-margin {} --seed {}`: {} frames (animate's cnj mode: frame k is CNJ's jitter of the start set at phase "
+      "alpha_k, traced with a trace map continuous in alpha; {} frame steps of {} rad each, so the "
       "phase turns by {} rad), in the unit square and the unit cube with {} noise at {} cycles per spacing and a CNJ "
       "step scale of {}. Drop mode (the 2023 method) traces a start set reaching {} spacings beyond the domain along the "
       "free field and shows the particles inside; conformant traces the sites inside along the field bounded by "
@@ -160,6 +162,12 @@ std::string figure8_markdown(const Figure8Result& result) {
   md += "| dim | mode | start lattice | particles | inside per frame (min..max) | entered | left | popping events per 100 "
         "frames | largest jump (spacings) | mean RMS move (spacings) | retraced | kept at start | seconds |\n";
   md += "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  std::string packing =
+      "\nThe packing of every frame (frames.csv's nearest-neighbour columns, in each frame's mean spacings) and the "
+      "per-frame moves over all frames and particles shown (in frame 0's mean spacings):\n\n"
+      "| dim | mode | median NN, frame 0 | median / frame 0's (min..max, mean) | 1% quantile, frame 0 | 1% quantile / "
+      "frame 0's (min..max) | median move | 99th percentile move (x median) | largest move (x median) |\n"
+      "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   std::vector<RunSummary> summaries;
   for (std::size_t r = 0; r < result.runs.size(); ++r) {
     const AnimationResult& a = result.runs[r].animation;
@@ -171,7 +179,16 @@ std::string figure8_markdown(const Figure8Result& result) {
                       format_real(s.popping, 4), format_real(s.largest_jump / a.spacing, 3),
                       format_real(s.mean_rms_move / a.spacing, 3), s.retraced, s.kept,
                       format_real(result.seconds[r], 3));
+    const PackingSummary p = summarise_packing(a);
+    const MoveSummary& m = a.moves;
+    packing += fmt::format("| {}D | {} | {} | {}..{} ({}) | {} | {}..{} | {} | {} ({}x) | {} ({}x) |\n", a.options.dimension,
+                           to_string(a.options.cnj.domain_mode), format_real(p.median_0, 3), format_real(p.median_min, 3),
+                           format_real(p.median_max, 3), format_real(p.median_mean, 3), format_real(p.q01_0, 3),
+                           format_real(p.q01_min, 3), format_real(p.q01_max, 3), format_real(m.median, 3),
+                           format_real(m.p99, 3), format_real(m.p99 / m.median, 3), format_real(m.largest, 3),
+                           format_real(m.largest / m.median, 3));
   }
+  md += packing;
   md += "\n## Reading\n\n";
   for (std::size_t r = 0; r + 1 < result.runs.size(); r += 2) {
     const AnimationResult& drop = result.runs[r].animation;
@@ -183,15 +200,19 @@ std::string figure8_markdown(const Figure8Result& result) {
         "- **{}D.** Drop mode shows between {} and {} particles per frame (a range of {}, {}% of its middle) and has "
         "{} popping events per 100 frames ({} entered, {} left over {} frame steps; at least one particle popped in {} "
         "of them). The conformant field keeps all {} particles inside in every frame: {} entered, {} left, 0 popping "
-        "events ({} trace(s) ended outside and were traced again with more steps{}). The two start sets differ: drop "
+        "events ({} trace end(s) outside moved into the domain{}). The median nearest-neighbour "
+        "distance of a frame is {}..{} times frame 0's (conformant; drop {}..{}). The two start sets differ: drop "
         "mode's lattice runs on through the boundary, conformant's holds the sites inside only. Largest per-frame "
         "jump: conformant {} spacings, drop {} (a frame lasts {} spacings of RMS motion); in {} of conformant's {} "
         "frame steps (drop: {}) the largest jump started within the transition width ({} spacings) of the boundary, "
         "where Eq. (13)'s blend turns the noise into the boundary function.\n",
         drop.options.dimension, d.lo, d.hi, d.hi - d.lo,
         format_real(100.0 * static_cast<double>(d.hi - d.lo) / mean_count, 3), format_real(d.popping, 4), d.entered,
-        d.left, drop.frames.size() - 1, d.popping_frames, conf.particles, k.entered, k.left, k.retraced,
-        k.kept > 0 ? fmt::format("; {} stayed where they were for that frame", k.kept) : std::string(),
+        d.left, drop.frames.size() - 1, d.popping_frames, conf.particles, k.entered, k.left, k.projected,
+        k.retraced > 0 ? fmt::format("; {} retraced with more steps, {} kept at their start", k.retraced, k.kept)
+                       : std::string(),
+        format_real(summarise_packing(conf).median_min, 3), format_real(summarise_packing(conf).median_max, 3),
+        format_real(summarise_packing(drop).median_min, 3), format_real(summarise_packing(drop).median_max, 3),
         format_real(k.largest_jump / conf.spacing, 3), format_real(d.largest_jump / drop.spacing, 3),
         format_real(conf.frame_time / conf.spacing, 3), k.in_layer, conf.frames.size() - 1, d.in_layer,
         format_real(conf.options.cnj.boundary_width, 3));

@@ -13,11 +13,17 @@ is_png() { [[ -s $1 && $(head -c 8 "$1" | od -An -tx1 | tr -d ' \n') == 89504e47
 for f in frames.npy frames.csv trails.csv; do [[ -s $work/c2/$f ]] && ok || bad "animate 2D wrote no $f"; done
 if command -v gnuplot >/dev/null; then is_png "$work/c2/animation.png" && ok || bad "animate 2D drew no animation.png"; fi
 grep -q "inside per frame: 64..64; entered 0, left 0" "$work/out" && ok || bad "animate 2D summary: $(cat "$work/out")"
-[[ $(head -1 "$work/c2/frames.csv") == frame,phase,inside,entered,left,largest_jump,rms_move,retraced,kept_at_start ]] \
+[[ $(head -1 "$work/c2/frames.csv") == frame,phase,inside,entered,left,largest_jump,rms_move,retraced,kept_at_start,projected,nn_min,nn_q01,nn_median,nn_median_scaled ]] \
   && ok || bad "frames.csv header: $(head -1 "$work/c2/frames.csv")"
 [[ $(wc -l <"$work/c2/frames.csv") -eq 41 ]] && ok || bad "frames.csv: one row per frame"
 awk -F, 'NR > 1 && ($3 != 64 || $4 != 0 || $5 != 0) { exit 1 }' "$work/c2/frames.csv" && ok || bad "conformant frames.csv: a particle left"
-awk -F, 'NR > 1 && ($2 !~ /[.e]/ || $6 !~ /[.e]/ || $7 !~ /[.e]/) { exit 1 }' "$work/c2/frames.csv" && ok || bad "frames.csv: a real without a decimal point"
+awk -F, 'NR > 1 && ($2 !~ /[.e]/ || $6 !~ /[.e]/ || $7 !~ /[.e]/ || $11 !~ /[.e]/ || $14 !~ /[.e]/) { exit 1 }' "$work/c2/frames.csv" && ok || bad "frames.csv: a real without a decimal point"
+grep -q "cnj mode: frame k is CNJ of the start sites" "$work/out" && grep -q "^packing: median nearest-neighbour distance" "$work/out" \
+  && grep -q "^per-frame moves (frame 0's mean spacings): median" "$work/out" && ok || bad "animate summary: $(cat "$work/out")"
+# --mode advect: today's mode before issue 46, still there; a bad mode is refused.
+"$bin" animate --dim 2 --grid 6 --frames 10 --mode advect --out "$work/adv" --quiet >"$work/out" 2>"$work/err" && ok || bad "animate advect: $(cat "$work/err")"
+grep -q "advect mode: frame 0 is CNJ, frame k is frame k-1 traced" "$work/out" && ok || bad "advect summary: $(cat "$work/out")"
+expect_error "bad mode" "" "mode" animate --dim 2 --grid 4 --mode flow --out "$work/bad1"
 if [[ -x $py ]] && $py -c 'import numpy' 2>/dev/null; then
   $py - "$work/c2/frames.npy" <<'PY' && ok || bad "frames.npy of the conformant run"
 import sys, numpy as np
