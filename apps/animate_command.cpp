@@ -27,6 +27,7 @@ struct AnimateCommand : Subcommand {
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
         "animate",
+        "CNJ animated as the field's phase turns: frames, their counts, a strip figure\n\n"
         "Curl noise jittering animated (the paper's Section 5.4): frame 0 is CNJ's jitter of the start lattice at\n"
         "phase alpha_0 (--phase); frame k is frame k-1 traced for one frame time along the field at phase\n"
         "alpha_k = alpha_0 + k DA (rotating gradients). One radian of phase is one CNJ trace time t, so a frame\n"

@@ -58,6 +58,7 @@ struct StatsCommand : Subcommand {
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
         "stats",
+        "Statistics of any point set: CSV, NPY, dat (UTK, pbrt) or UTK's .bin\n\n"
         "Statistics of any point set in [0,S]^N, N = 1..8: nearest-neighbour summary and, with --discrepancy, the\n"
         "CD, WD, MD and L2-star discrepancies (as scipy.stats.qmc.discrepancy). One CSV row per set of every\n"
         "input (columns input, set); inputs with several sets also get their mean and sd rows (column\n"
@@ -65,8 +66,8 @@ struct StatsCommand : Subcommand {
     // A file or '-' (standard input).
     const CLI::Validator file_or_standard_input(
         [](std::string& path) { return path == kStandardInput ? std::string() : CLI::ExistingFile(path); }, "FILE|-");
-    cmd->add_option("--input,inputs", inputs,
-                    "Point file to read, as --input FILE (repeatable) and/or positional FILE...; '-' = standard input (once;\n"
+    cmd->add_option("-i,--input,inputs", inputs,
+                    "Point file to read, as -i/--input FILE (repeatable) and/or positional FILE...; '-' = standard input (once;\n"
                     "needs --format). CSV (optional header), NPY float64/float32 (points, N) or (sets, points, N),\n"
                     "dat (whitespace-separated, '#' lines between sets) or UTK's binary .bin (one record a set)")
         ->required()

@@ -20,9 +20,9 @@ done
   grep -q "stats" "$work/help" && ok || bad "--help: $(cat "$work/help")"
 "$bin" --help-all >"$work/help_all" 2>&1 && grep -q -- "--step-scale" "$work/help_all" && grep -q -- "--diagnose" "$work/help_all" &&
   ok || bad "--help-all: $(head -3 "$work/help_all")"
-"$bin" sample -h >"$work/out" 2>&1 && grep -q -- "-n,--count" "$work/out" && grep -q -- "-o,--output,--stats" "$work/out" &&
-  grep -q -- "-q,--quiet" "$work/out" && grep -q -- "--progress" "$work/out" && grep -q -- "-d,--dim" "$work/out" &&
-  grep -q -- "-s,--seed" "$work/out" && ok || bad "sample -h lacks a short option"
+"$bin" sample -h >"$work/out" 2>&1 && grep -q -- "-n, --count" "$work/out" && grep -q -- "-o, --output, --stats" "$work/out" &&
+  grep -q -- "-q, --quiet" "$work/out" && grep -q -- "--progress" "$work/out" && grep -q -- "-d, --dim" "$work/out" &&
+  grep -q -- "-s, --seed" "$work/out" && ok || bad "sample -h lacks a short option"
 "$bin" --version | grep -q "^dfvn-sample [0-9]" && ok || bad "--version"
 
 # Refused combinations.
@@ -30,7 +30,8 @@ expect_error "format without points" "" "--format npy applies to --points" -d 2 
 expect_error "rdf and stats on stdout" "" "--rdf - would both write to standard output" -d 2 --grid 4 --rdf -
 expect_error "json and stats on stdout" "" "--json - would both write" -d 2 --grid 4 --json -
 expect_error "points - with two methods" "" "one point set to standard output" -d 2 --grid 4 --methods jitter,sobol --points - -o "$work/x.csv"
-expect_error "points - and stats on stdout" "" "--points - would both write" -d 2 --grid 4 --methods sobol --points -
+# --points - alone writes the points, and no statistics, to standard output (tests/cli/test_cli_habits.sh).
+expect_error "points - and stats on stdout" "" "--points - would both write" -d 2 --grid 4 --methods sobol --points - -o -
 expect_error "no-stats without points" "" "give --points" -d 2 --grid 4 --no-stats
 expect_error "-n and --grid" "" "excludes" -d 2 --grid 4 -n 100
 expect_error "-n too small" "" "count" -d 2 -n 1

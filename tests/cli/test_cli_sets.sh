@@ -101,6 +101,6 @@ expect_error "rdf 1D" "0.1\n0.5\n0.9\n" "--rdf needs 2D..8D points" stats --inpu
 expect_error "sets in csv" "" "--format dat, npy or bin \(csv holds one set\)" -n 64 -d 2 -m 2 --points "$work/x"
 expect_error "npy pds" "" "pds's sets differ in size" -n 64 -d 2 -m 2 --methods pds --points "$work/x" --format npy
 expect_error "points - many methods" "" "--points - writes one point set" -n 64 -d 2 -m 2 --methods sobol,pds --points - --format dat
-[[ $("$bin" sample --help 2>&1 | grep -c -- '-m,--sets') -ge 1 ]] && ok || bad "--help lacks -m,--sets"
+[[ $("$bin" sample --help 2>&1 | grep -c -- '-m, --sets') -ge 1 ]] && ok || bad "--help lacks -m,--sets"
 
 finish "cli_sets"

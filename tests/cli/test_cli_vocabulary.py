@@ -51,7 +51,7 @@ SHARED = {
     "--lift-ramp": ["the vertical ramp of the paper's figure 9"],
     "--steer-dir": ["with --noise steerable: the direction u the noise is elongated along"],
     "--steer-field": ["with --noise steerable: constant (--steer-dir) or circular"],
-    "--steer-quality": ["with --noise steerable: seed 002's quality q in 0..n"],
+    "--steer-quality": ["with --noise steerable: the quality q in 0..n"],
     "--steer-image": ["with --noise steerable in 2d: steer along an image's direction field"],
     "--steer-k": ["with --noise steerable: the metric's eigenvalue k along u, in (0, 1]"],
     "--octaves": ["octaves k of the noise (bridson et al. 2007, section 2.2)", "1 is the field without"],
@@ -122,20 +122,22 @@ def sections(help_all):
 
 
 def options(section):
-    """{long name: (type, description)} of one section's option list (CLI11's layout: the names at
-    column 4, the description from column 32, continuation lines indented to it)."""
+    """{long name: (value kind, description)} of one section's option list (the help's layout: in
+    --help-all a subcommand's option line starts at column 4 with its names, "-d, --dim", then its
+    value's label, "N (2..8, default 7)" or "{a,b} (default a)"; the description follows on lines
+    indented by 8). The kind is the label's name (N, FILE), CHOICE for a list of choices, FLAG for none."""
     found, current = {}, None
     for line in section.split("\n"):
-        head = re.match(r"^    (-[^ ]+)(?: ([A-Z0-9]+)\S*)?(.*)$", line)
+        head = re.match(r"^    (-[-a-zA-Z0-9]+(?:, -[-a-zA-Z0-9]+)*)(?: (\S+))?", line)
         if head:
-            names = head.group(1).split(",")
-            current = [n for n in names if n.startswith("--")]
-            description = line[32:] if len(line) > 32 and line[31] == " " and line[32] != " " else ""
+            current = [n for n in head.group(1).split(", ") if n.startswith("--")]
+            label = head.group(2)
+            kind = "FLAG" if label is None else "CHOICE" if label.startswith("{") else label.rstrip(".")
             for n in current:
-                found[n] = (head.group(2) or "FLAG", description)
-        elif current and line.startswith(" " * 32) and line.strip():
+                found[n] = (kind, "")
+        elif current and line.startswith(" " * 8) and line.strip():
             for n in current:
-                found[n] = (found[n][0], found[n][1] + " " + line.strip())
+                found[n] = (found[n][0], (found[n][1] + " " + line.strip()).strip())
         else:
             current = None
     return found
@@ -213,11 +215,11 @@ for name in shared:
 # subcommand, a name newly shared without an entry, a second value type.
 for what, mutate in [
     ("table2's --frequency per image width", lambda ps: ps["dfvn-sample reproduce table2"].__setitem__(
-        "--frequency", ("FLOAT", "Noise frequency in cycles per image width"))),
+        "--frequency", ("F", "Noise frequency in cycles per image width"))),
     ("a new shared name without an entry", lambda ps: [ps[s].__setitem__("--brand-new", ("INT", "x"))
                                                        for s in ["dfvn-sample sample", "dfvn-sample stats"]]),
     ("--seed as a float in field", lambda ps: ps["dfvn-sample field"].__setitem__(
-        "--seed", ("FLOAT", ps["dfvn-sample field"]["--seed"][1]))),
+        "--seed", ("X", ps["dfvn-sample field"]["--seed"][1]))),
 ]:
     mutated = {s: dict(o) for s, o in per_section.items()}
     mutate(mutated)
