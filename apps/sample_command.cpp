@@ -52,6 +52,7 @@ struct SampleCommand : Subcommand {
   bool one_point_file = false;  // --points FILE.ext with one method (choose_point_file)
   std::string json_path;
   std::string report_path;
+  std::string summary_path;
   std::string format = "csv";
   std::string domain{dfvn::to_string(dfvn::kDefaultDomainKind)};
   std::string domain_mode = "conformant";
@@ -138,6 +139,10 @@ struct SampleCommand : Subcommand {
     cmd->add_option("--json", json_path,
                     "Also write the run as JSON: parameters, every method's statistics and derived values ('-' = standard\n"
                     "output)");
+    cmd->add_option("--summary", summary_path,
+                    "Also write the summary over the realizations as CSV ('-' = standard output): per method and\n"
+                    "statistic the mean, sd and standard error over the R sets of --realizations R >= 2 (a column\n"
+                    "constant over them, a setting, is not summarised); the JSON holds them too");
     cmd->add_option("--report", report_path,
                     "Also write the verdict as Markdown: per statistic (nn_min, nn_q01, nn_median_scaled) the methods\n"
                     "ranked, each against jitter-matched and Poisson disk as a ratio, and with --realizations R the\n"
@@ -247,9 +252,9 @@ struct SampleCommand : Subcommand {
         ->capture_default_str()
         ->check(CLI::Range(0, 1 << 30));
     cmd->add_option("-m,--sets,--realizations", realizations,
-                    "Realizations R: independently seeded repeats, seeds s..s+R-1 (-m/--sets M as in UTK); adds per\n"
-                    "method the mean and sd of every real statistic (rows stat = mean, sd); --points writes a\n"
-                    "method's R sets into one file")
+                    "Realizations R: independently seeded repeats, seeds s..s+R-1 (-m/--sets M as in UTK): one row\n"
+                    "a set; --summary and --json add their mean, sd and standard error; --points writes a method's R\n"
+                    "sets into one file")
         ->capture_default_str()
         ->check(CLI::Range(1, 100000));
     progress.add_to(*cmd);
@@ -328,6 +333,7 @@ struct SampleCommand : Subcommand {
     if (!rdf_path.empty()) outputs.emplace_back("--rdf", rdf_path);
     if (!json_path.empty()) outputs.emplace_back("--json", json_path);
     if (!report_path.empty()) outputs.emplace_back("--report", report_path);
+    if (!summary_path.empty()) outputs.emplace_back("--summary", summary_path);
     if (points_dir == "-") outputs.emplace_back("--points", points_dir);
     const bool points_to_files = !points_dir.empty() && points_dir != "-";
     const bool points_folder = points_to_files && !one_point_file;
@@ -402,8 +408,9 @@ struct SampleCommand : Subcommand {
         write_sidecar(first_results[m], seeds, counts);
       }
     }
-    if (realizations > 1)
-      stats += dfvn::realization_summary_rows(stats.substr(0, stats.find('\n')), realization_rows, {"dim", "grid", "method"}, "seed");
+    const std::string summary =
+        dfvn::realization_summary_csv(stats.substr(0, stats.find('\n')), realization_rows, {"dim", "grid", "method"}, "seed");
+    if (!summary_path.empty()) dfvn::write_file_atomically(summary_path, summary);
     config.seed = common.seed;
     if (!json_path.empty()) dfvn::write_file_atomically(json_path, dfvn::sampling_json(config, runs, !no_timing));
     if (!rdf_path.empty()) dfvn::write_file_atomically(rdf_path, rdf);
@@ -511,6 +518,9 @@ struct SampleCommand : Subcommand {
         std::find(config.methods.begin(), config.methods.end(), dfvn::Method::cnj) != config.methods.end())
       throw std::invalid_argument("--stream --points - --format " + format + ": drop mode's point count is known only at "
                                   "the end and goes first in the file, which needs a regular file (or --format dat, csv)");
+    if (!summary_path.empty() && realizations < 2)
+      throw std::invalid_argument("--summary summarises the sets of --realizations R: give R >= 2");
+    if (!summary_path.empty() && no_stats) throw std::invalid_argument("--no-stats computes no statistics to summarise");
     if (realizations > 1 && !rdf_path.empty())
       throw std::invalid_argument("--rdf takes one realization; drop it or --sets");
     if (realizations > 1 && !points_dir.empty() && format == "csv")

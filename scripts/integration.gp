@@ -3,7 +3,7 @@
 # as a dotted guide through random's first point. Compiled into dfvn-sample (src/plot/gnuplot.hpp),
 # which runs it as
 #   gnuplot -c integration.gp OUT.png INTEGRATION.csv DIM METHODS GUIDES
-# INTEGRATION.csv: columns dim,family,method,grid,points,rms_relative_error,standard_error,...
+# INTEGRATION.csv: columns dim,family,method,grid,mean_points,rms_relative_error,standard_error,...
 # METHODS: the methods to draw ("cnj jitter ..."). GUIDES: per family in the order of `families`, the
 # guide's point "n e", or "- -" for none.
 array families[6] = ["oscillatory", "product_peak", "corner_peak", "gaussian", "continuous", "discontinuous"]
