@@ -2,6 +2,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -44,6 +46,7 @@ struct ReproduceCommand : Subcommand {
   std::string setting = "shader";
   double frequency = 0.0, field_magnitude = 0.0;  // 0: the setting's
   CLI::Option* second_width_option = nullptr;
+  CLI::Option* height_option = nullptr;
   std::string table1_noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
   ProgressOptions progress;
   int table1_realizations = dfvn::Table1Config{}.realizations;
@@ -67,7 +70,8 @@ struct ReproduceCommand : Subcommand {
         "table1",
         "Table 1 and Figure 4: packing of CNJ, jitter, Poisson disk and Sobol in 3D-7D\n\n"
         "Table 1 and Figure 4: CNJ, jittering, Poisson disk and Sobol point sets in 3D-7D under the paper protocol.\n"
-        "Writes DIR/table1.csv, DIR/rdf.csv, DIR/table1.md and (with gnuplot) DIR/figure4.png; prints table1.md as plain text.");
+        "Writes DIR/table1.csv (a row a realization), DIR/table1_summary.csv, DIR/rdf.csv, DIR/table1.md and (with\n"
+        "gnuplot) DIR/figure4.png; prints table1.md as plain text.");
     t1->add_option("--out", out1, kOutDirHelp)->capture_default_str();
     t1->add_option("--dims", dims, "Dimensions: a range or list within 3..7, e.g. 3-7 or 3,5")->capture_default_str();
     t1->add_option("--realizations", table1_realizations,
@@ -95,8 +99,12 @@ struct ReproduceCommand : Subcommand {
                    "(x in [0, 1] across it): per width is per unit length")
         ->capture_default_str()
         ->check(CLI::IsMember({"shader", "ours"}));
-    t2->add_option("--width", warp.width, "Image width in pixels")->capture_default_str()->check(CLI::Range(2, 20000));
-    t2->add_option("--height", warp.height, "Image height in pixels")->capture_default_str()->check(CLI::Range(2, 20000));
+    t2->add_option("--width", warp.width, "Image width in pixels; without --height the height keeps the 16:9 aspect")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 20000));
+    height_option = t2->add_option("--height", warp.height, "Image height in pixels")
+                        ->capture_default_str()
+                        ->check(CLI::Range(2, 20000));
     second_width_option = t2->add_option("--second-width", table2.second_width,
                    "Width of the second resolution (same aspect ratio) at which every RMSE is measured again; 0 = none;\n"
                    "default: half of --width (none when that is below 2 pixels a side)")
@@ -497,11 +505,12 @@ struct ReproduceCommand : Subcommand {
     figure6.seed = common6.seed;
     figure6.threads = common6.threads;
     figure6.validate();
-    dfvn::check_outputs(files_in(figure6.out_dir, dfvn::figure6_output_files()), {figure6.out_dir});
+    dfvn::check_figure_prerequisites();  // before the output folder is made
+    dfvn::check_outputs(files_in(figure6.out_dir, dfvn::figure6_output_files(figure6)), {figure6.out_dir});
     dfvn::ProgressReporter* reporter = progress.make(dfvn::figure6_stage_weights(figure6));
     const auto result = dfvn::run_figure6(figure6, reporter->callback());
     reporter->complete();
-    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_figure6(result)).c_str(), stdout);
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_figure6(result, log)).c_str(), stdout);
   }
 
   void run_figure7() {
@@ -509,12 +518,13 @@ struct ReproduceCommand : Subcommand {
     figure7.seed = common7.seed;
     figure7.threads = common7.threads;
     figure7.validate();
+    dfvn::check_figure_prerequisites();  // before the output folder is made
     dfvn::check_outputs(files_in(figure7.out_dir, dfvn::figure7_output_files()), {figure7.out_dir});
     dfvn::ProgressReporter* reporter = progress.make(1);
     const dfvn::StageProgress stage = reporter->callback();
     const auto result = dfvn::run_figure7(figure7, [&](double f) { if (stage) stage("figure7", f); });
     reporter->complete();
-    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_figure7(result)).c_str(), stdout);
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_figure7(result, log)).c_str(), stdout);
   }
 
   void run_slope_figure(dfvn::Figure9Config& config, const std::vector<double>& slope, const std::string& noise,
@@ -526,13 +536,14 @@ struct ReproduceCommand : Subcommand {
     config.seed = common.seed;
     config.threads = common.threads;
     config.validate();
+    dfvn::check_figure_prerequisites();  // before the output folder is made
     dfvn::check_outputs(files_in(config.out_dir, dfvn::figure9_output_files(config)), {config.out_dir});
     dfvn::ProgressReporter* reporter = progress.make(1);
     const dfvn::StageProgress stage = reporter->callback();
     const std::string name = config.name();
     const auto result = dfvn::run_figure9(config, [&](double f) { if (stage) stage(name, f); });
     reporter->complete();
-    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_figure9(result)).c_str(), stdout);
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_figure9(result, log)).c_str(), stdout);
   }
 
   static void log(const std::string& line) { std::fprintf(stderr, "%s: %s\n", kProgram, line.c_str()); }
@@ -559,7 +570,12 @@ struct ReproduceCommand : Subcommand {
     dfvn::WarpConfig& config = table2.warp;
     config = dfvn::warp_config(table2.setting);
     config.width = warp.width;
-    config.height = warp.height;
+    // --width alone keeps the default image's aspect (384 x 216), rounded to whole pixels, at least 2.
+    const dfvn::WarpConfig default_size;
+    config.height = height_option->count() > 0
+                        ? warp.height
+                        : std::max(2, static_cast<int>(std::lround(static_cast<double>(warp.width) * default_size.height /
+                                                                    default_size.width)));
     config.samples = warp.samples;
     if (frequency > 0.0) config.frequency = frequency;
     if (field_magnitude > 0.0) config.field_magnitude = field_magnitude;

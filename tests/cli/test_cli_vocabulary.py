@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 24's one vocabulary: every option name means one thing across subcommands.
+"""One vocabulary: every option name means one thing across subcommands.
 
 Reads `dfvn-sample --help-all`, finds every option name that more than one subcommand takes and
 checks that each of its descriptions states the meaning and unit the table SHARED gives (phrases
@@ -20,7 +20,7 @@ import tempfile
 BIN = os.environ["DFVN_SAMPLE"]
 SOURCE = os.environ.get("DFVN_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
 
-# name -> the phrases every description of it must hold (README's table "Options that mean the same
+# name -> the phrases every description of it must hold (docs/CLI.md's table "Options that mean the same
 # everywhere" says the same in words). Names taken by one subcommand today but meant to be shared are
 # listed too, so that they keep one meaning when a second subcommand takes them.
 SHARED = {
@@ -36,6 +36,7 @@ SHARED = {
     "--input": ["point file to read"],
     "--format": ["point file format", "csv", "npy", "dat"],
     "--json": ["also write the", "as json", "('-' = standard output)"],
+    "--summary": ["also write the summary over", "the mean, sd and standard error", "('-' = standard output)"],
     "--no-timing": ["leave the seconds column", "empty"],
     "--knn": ["kd-tree backend: nanoflann or flann"],
     "--periodic": ["on the torus", "minimum-image"],
@@ -181,7 +182,7 @@ def vocabulary_problems(per_section):
             continue
         where = ", ".join(s.replace("dfvn-sample ", "") for s, _, _ in uses)
         if name not in SHARED:
-            problems.append(f"{name} ({where}) is shared but has no entry in SHARED (and README's table)")
+            problems.append(f"{name} ({where}) is shared but has no entry in SHARED (and docs/CLI.md's table)")
             continue
         for section, kind, description in uses:
             missing = [p for p in SHARED[name] if p not in normalise(description)]
@@ -199,17 +200,17 @@ check(len(shared) >= 15, f"{len(shared)} names are shared: {' '.join(shared)}")
 problems = vocabulary_problems(per_section)
 check(not problems, "every shared name states its one meaning and unit" + "".join("\n     " + p for p in problems))
 
-# README's table "Options that mean the same everywhere" has a row for every shared name (--help and
-# --help-all aside).
+# docs/CLI.md's table "Options that mean the same everywhere" has a row for every shared name (--help
+# and --help-all aside).
 source_dir = os.environ.get("DFVN_SOURCE_DIR", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
-readme = open(os.path.join(source_dir, "README.md"), encoding="utf-8").read()
-start = readme.find("## Options that mean the same everywhere")
-table = readme[start:readme.find("\n## ", start + 1)] if start >= 0 else ""
+reference = open(os.path.join(source_dir, "docs", "CLI.md"), encoding="utf-8").read()
+start = reference.find("## Options that mean the same everywhere")
+table = reference[start:reference.find("\n## ", start + 1)] if start >= 0 else ""
 rows = [line for line in table.split("\n") if line.startswith("| `")]
 for name in shared:
     if name not in ("--help", "--help-all"):  # the paragraph above the table describes them
         check(any(re.search(rf"`(-[a-zA-Z], )?{re.escape(name)}[` ,]", row.split("|")[1]) for row in rows),
-              f"README's table of shared options has a row for {name}")
+              f"docs/CLI.md's table of shared options has a row for {name}")
 
 # The check itself fails on the departures it is there for: a shared name's unit changed in one
 # subcommand, a name newly shared without an entry, a second value type.
