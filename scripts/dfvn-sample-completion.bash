@@ -23,8 +23,10 @@ _dfvn_sample() {
   local program=${words[0]}
   # Subcommands: the first word may name one of the top level's, the next one of its own, and so on.
   local -a path=()
-  local i subcommands="sample field stats reproduce animate"
-  [[ ${program##*/} == dfvn-sample-mpi ]] && subcommands=""
+  # The top level's subcommands as its --help lists them (one source with the usage and the man page).
+  local i subcommands=""
+  [[ ${program##*/} == dfvn-sample-mpi ]] ||
+    subcommands=$("$program" --help 2>/dev/null | sed -n '/^Subcommands:$/,/^$/s/^  \([a-z][a-z0-9-]*\) .*/\1/p' | tr '\n' ' ')
   for ((i = 1; i < cword; i++)); do
     [[ " $subcommands " == *" ${words[i]} "* ]] || break
     path+=("${words[i]}")
