@@ -69,4 +69,11 @@ done
 for name in sample field stats reproduce animate; do grep -q "^  $name " usage.txt && ok || bad "usage lacks $name"; done
 grep -q "about a minute" usage.txt && bad "the usage still guesses the main job's time" || ok
 
+# table2's --width alone keeps the 16:9 aspect of its default 384 x 216 (it gave a portrait image).
+png_size() { /usr/bin/python3 -c "import struct, sys; print(*struct.unpack('>II', open(sys.argv[1], 'rb').read(24)[16:24]))" "$1"; }
+"$bin" reproduce table2 --width 64 --second-width 0 --out t2 -q >/dev/null 2>&1 && [[ $(png_size t2/source.png) == "64 36" ]] && ok ||
+  bad "table2 --width 64: $(png_size t2/source.png 2>&1)"
+"$bin" reproduce table2 --width 32 --height 32 --second-width 0 --out t2b -q >/dev/null 2>&1 &&
+  [[ $(png_size t2b/source.png) == "32 32" ]] && ok || bad "table2 --width 32 --height 32"
+
 finish "cli_habits"
