@@ -591,7 +591,10 @@ std::string write_cnj_study(const CnjStudyResult& result, const Log& log) {
   for (const CnjStudyRow& r : result.rows)
     if (bases.find(std::string(to_string(r.basis)) + " ") == std::string::npos) bases += std::string(to_string(r.basis)) + " ";
   draw_figure(PlotProgram::cnj_study, (dir / "cnj_study.png").string(),
-              {(dir / "cnj_study.csv").string(), (dir / "cnj_study_jitter.csv").string(), dims, bases}, log);
+              {(dir / "cnj_study.csv").string(), (dir / "cnj_study_jitter.csv").string(), dims, bases,
+               fmt::format("{} realizations from seed {}, {} lattice", result.config.seeds, result.config.seed,
+                           result.config.lattice == StudyLattice::interior ? "interior sites of the" : "the paper's Table 1")},
+              log);
   return md;
 }
 

@@ -397,7 +397,10 @@ std::string write_integration(const IntegrationResult& result, const Log& log) {
       guides += first ? fmt::format("{:.9g} {:.9g} ", first->points, first->rms_relative_error) : std::string("- - ");
     }
     draw_figure(PlotProgram::integration, (std::filesystem::path(dir) / fmt::format("integration_{}d.png", d)).string(),
-                {(std::filesystem::path(dir) / "integration.csv").string(), std::to_string(d), methods, guides}, log);
+                {(std::filesystem::path(dir) / "integration.csv").string(), std::to_string(d), methods, guides,
+                 fmt::format("{} realizations, seeds {}..{}, Genz's six families in [0,1]^{}", result.config.realizations,
+                             result.config.seed, result.config.seed + static_cast<std::uint64_t>(result.config.realizations - 1), d)},
+                log);
   }
   return md;
 }
