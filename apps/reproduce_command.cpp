@@ -225,11 +225,12 @@ struct ReproduceCommand : Subcommand {
     bridson.seed = common_bridson.seed;
     bridson.threads = common_bridson.threads;
     bridson.validate();
+    dfvn::check_figure_prerequisites();  // before the output folder is made
     dfvn::check_outputs(files_in(bridson.out_dir, dfvn::bridson_output_files()), {bridson.out_dir});
     dfvn::ProgressReporter* reporter = progress.make(dfvn::bridson_stage_weights(bridson));
     const auto result = dfvn::run_bridson(bridson, reporter->callback());
     reporter->complete();
-    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_bridson(result)).c_str(), stdout);
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_bridson(result, log)).c_str(), stdout);
   }
 
   void run_cnj_study() {

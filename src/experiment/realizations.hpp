@@ -23,7 +23,7 @@ double standard_error(const MeanSd& s, std::size_t count);
 // mean, sample sd and sd / sqrt(R) as reals (statistics to 9 significant digits, a seconds_* column's
 // to 6 decimals). A column constant over the realizations (a setting, such as domain_side or
 // cycles_per_spacing) is not summarised, unless it is a statistic of the sets (nn_*, the displacement
-// columns, the discrepancies), which always is; words, empty cells and `label_column` (the seed or set
+// columns, the discrepancies) or a time (seconds_*), which always is; words, empty cells and `label_column` (the seed or set
 // number) never are. `rows`: data lines without their newline, with the columns of `header`
 // (comma-separated; a field may be a double-quoted text without commas inside quotes).
 std::string realization_summary_csv(const std::string& header, const std::vector<std::string>& rows,

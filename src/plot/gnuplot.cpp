@@ -40,6 +40,7 @@ std::string_view plot_program_name(PlotProgram program) {
     case PlotProgram::figure6: return "figure6.gp";
     case PlotProgram::figure7: return "figure7.gp";
     case PlotProgram::slope: return "slope.gp";
+    case PlotProgram::titled: return "titled.gp";
   }
   return "?";
 }
@@ -57,6 +58,7 @@ std::string_view plot_program_text(PlotProgram program) {
     case PlotProgram::figure6: return kFigure6Program;
     case PlotProgram::figure7: return kFigure7Program;
     case PlotProgram::slope: return kSlopeProgram;
+    case PlotProgram::titled: return kTitledProgram;
   }
   return "";
 }
