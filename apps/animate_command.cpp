@@ -27,6 +27,7 @@ struct AnimateCommand : Subcommand {
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
         "animate",
+        "CNJ animated as the field's phase turns: frames, their counts, a strip figure\n\n"
         "Curl noise jittering animated (the paper's Section 5.4): the field's phase turns by DA per frame,\n"
         "alpha_k = alpha_0 + k DA (rotating gradients). --mode cnj: frame k is CNJ's jitter of the start lattice\n"
         "at phase alpha_k, so every frame packs as CNJ does; --mode advect: frame k is frame k-1 traced on for\n"

@@ -48,6 +48,7 @@ struct FieldCommand : Subcommand {
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
         "field",
+        "Evaluate the field at points read as text, or diagnose its health (--diagnose)\n\n"
         "Evaluate the divergence-free field at points read as text: comma-separated (optional header) or\n"
         "whitespace-separated (numpy.savetxt's default; '#' lines are comments), one point a line.\n"
         "Writes x0..x{N-1},c0..c{N-1},f1..f{N-1}: the point, the field vector c = cross(grad f_1..f_{N-1})\n"
@@ -91,7 +92,7 @@ struct FieldCommand : Subcommand {
         ->take_all();
     bridson.add_to(*cmd);
     CLI::Option* input_option =
-        cmd->add_option("--input", input, "Point file to read, CSV or whitespace-separated (default: standard input)")
+        cmd->add_option("-i,--input", input, "Point file to read, CSV or whitespace-separated (default: standard input)")
             ->type_name("FILE");  // a file that cannot be read is bad data, exit 1, said by the reader
     CLI::Option* diagnose_flag = cmd->add_flag(
         "--diagnose", diagnose,

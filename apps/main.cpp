@@ -14,6 +14,7 @@
 #include "dfvn/core/bulk_memory.hpp"
 #include "dfvn/core/message_text.hpp"
 #include "dfvn/io/atomic_file.hpp"
+#include "help_format.hpp"
 #include "options.hpp"
 #include "dfvn/sampling/method.hpp"
 
@@ -45,19 +46,68 @@ CLI::App* deepest_subcommand(CLI::App& app) {
   return deepest;
 }
 
-// A parse error as the tool's own line: unexpected arguments in the order given, and a missing
-// subcommand with the names it could have been.
-std::string parse_error_message(CLI::App& app, const CLI::ParseError& error) {
+// Typos get one suggestion: the closest name by edit distance (apps/options.hpp's closest_names), or
+// the tied closest names; a name far from every one gets none.
+std::string did_you_mean(const std::vector<std::string>& closest) {
+  std::string text;
+  for (std::size_t i = 0; i < closest.size(); ++i) text += (i == 0 ? "" : i + 1 == closest.size() ? " or " : ", ") + closest[i];
+  return closest.empty() ? std::string() : "; did you mean " + text + "?";
+}
+
+// The option names a subcommand takes (its hidden, refused names left out).
+std::vector<std::string> option_names(const CLI::App& app) {
+  std::vector<std::string> names;
+  for (const CLI::Option* option : app.get_options()) {
+    if (option->get_group().empty()) continue;
+    for (const std::string& name : option->get_lnames()) names.push_back("--" + name);
+    for (const std::string& name : option->get_snames()) names.push_back("-" + name);
+  }
+  return names;
+}
+
+std::vector<std::string> subcommand_names(const CLI::App& app) {
+  std::vector<std::string> names;
+  for (const CLI::App* sub : const_cast<CLI::App&>(app).get_subcommands([](CLI::App*) { return true; }))
+    names.push_back(sub->get_name());
+  return names;
+}
+
+// A parse error as the tool's own line: unexpected arguments in the order given (a mistyped option or
+// subcommand with the name it was probably meant to be), and a missing subcommand with the names it
+// could have been.
+std::string parse_error_message(CLI::App& app, const CLI::ParseError& error, const std::vector<std::string>& given) {
   CLI::App* deepest = deepest_subcommand(app);
   const std::vector<std::string> unexpected = app.remaining(true);
   if (deepest->get_require_subcommand_min() > 0 && deepest->get_subcommands().empty()) {
+    if (!unexpected.empty()) {
+      const auto closest = dfvn_cli::closest_names(unexpected.front(), subcommand_names(*deepest));
+      if (!closest.empty())
+        return fmt::format("unknown {} subcommand {}{}", deepest->get_name(), dfvn::quote_for_message(unexpected.front()),
+                           did_you_mean(closest));
+    }
     std::string names;
-    for (const CLI::App* sub : deepest->get_subcommands([](CLI::App*) { return true; }))
-      names += (names.empty() ? "" : " or ") + sub->get_name();
+    for (const std::string& name : subcommand_names(*deepest)) names += (names.empty() ? "" : " or ") + name;
     return fmt::format("'{}' needs a subcommand: {}{}", deepest->get_name(), names,
                        unexpected.empty() ? std::string() : ", got " + dfvn::quote_for_message(unexpected.front()));
   }
+  // A mistyped option explains the error, whatever CLI11 found first (a required option missing, say).
+  if (!unexpected.empty() && unexpected.front().starts_with("-")) {
+    const std::string& first = unexpected.front();
+    const std::string name = first.substr(0, first.find('='));
+    const auto closest = dfvn_cli::closest_names(name, option_names(*deepest));
+    if (!closest.empty()) {
+      const bool named = deepest != &app && std::find(given.begin(), given.end(), deepest->get_name()) != given.end();
+      return "unknown option " + dfvn::quote_for_message(name) + (named ? " for " + deepest->get_name() : std::string()) +
+             did_you_mean(closest);
+    }
+  }
   if (dynamic_cast<const CLI::ExtrasError*>(&error) && !unexpected.empty()) {
+    const std::string& first = unexpected.front();
+    // The first word names no subcommand (sample ran by default): a mistyped subcommand?
+    if (!given.empty() && given.front() == first && !first.starts_with("-")) {
+      const auto closest = dfvn_cli::closest_names(first, subcommand_names(app));
+      if (!closest.empty()) return "unknown subcommand " + dfvn::quote_for_message(first) + did_you_mean(closest);
+    }
     std::string list;
     for (const std::string& arg : unexpected) list += (list.empty() ? "" : " ") + dfvn::quote_for_message(arg);
     return fmt::format("unexpected argument{}: {}", unexpected.size() > 1 ? "s" : "", list);
@@ -105,44 +155,46 @@ std::string complete_help(CLI::App& app) {
   return text;
 }
 
-// Without arguments: what the tool does and how to start, instead of starting a long job.
-constexpr const char* kUsageText =
-    "dfvn-sample: divergence-free vector noise (DFVN) in 2..8 dimensions, curl noise jittering of lattices\n"
-    "and the point-set statistics of 'Improving Curl Noise' (SIGGRAPH Asia 2025).\n"
-    "\n"
-    "The main job: CNJ, jittered lattice, Poisson disk and Sobol point sets and one CSV row of\n"
-    "nearest-neighbour statistics per method (any options run it, as does 'dfvn-sample sample ...'):\n"
-    "  dfvn-sample --dim 7 --grid 6              the paper's 7D sets (about a minute on 2 cores)\n"
-    "  dfvn-sample -d 3 -n 4096 -o stats.csv     3D, 4096 points per set\n"
-    "\n"
-    "Subcommands:\n"
-    "  sample      the main job (the default)\n"
-    "  field       evaluate the field at points read as text\n"
-    "  stats       statistics of any point set (CSV, NPY or dat)\n"
-    "  animate     CNJ animated as the field's phase turns: frames, their counts, a strip figure\n"
-    "  reproduce   the paper's tables and figures: table1, table2, cnj-study, integration, figure8\n"
-    "\n"
-    "'dfvn-sample SUBCOMMAND --help' lists a subcommand's options and defaults; --help-all lists every one;\n"
-    "--version prints the version.\n";
-
-// The usage and the list of methods (--methods), from dfvn::kAllMethods.
-std::string usage() {
-  std::string text = kUsageText;
-  const std::string marker = "\nSubcommands:";
-  text.insert(text.find(marker), "  methods (--methods): " + dfvn::method_names() + "\n");
-  return text;
+// Without arguments: what the tool does and how to start, instead of starting a long job. The
+// subcommands, reproduce's list and the methods come from the registered subcommands and
+// dfvn::kAllMethods, as --help, --help-all, the man page and the completion do. The main job's time was
+// measured on 2 quiet cores (bench/results.md: 4.1-4.4 s with AVX-512).
+std::string usage(CLI::App& app) {
+  std::string text =
+      "dfvn-sample: divergence-free vector noise (DFVN) in 2..8 dimensions, curl noise jittering of lattices\n"
+      "and the point-set statistics of 'Improving Curl Noise' (SIGGRAPH Asia 2025).\n"
+      "\n"
+      "The main job: every method's point set in one domain at one count, and one CSV row of\n"
+      "nearest-neighbour statistics per method (any options run it, as does 'dfvn-sample sample ...'):\n"
+      "  dfvn-sample --dim 7 --grid 6              7D, 6^7 points a set (about 5 s on 2 cores)\n"
+      "  dfvn-sample -d 3 -n 4096 -o stats.csv     3D, 4096 points a set, the statistics to a file\n"
+      "  methods (--methods): " + dfvn::method_names() + "\n"
+      "\n"
+      "Subcommands:\n";
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+    std::string line = fmt::format("  {:<12}{}", sub->get_name(), dfvn_cli::summary_of(*sub));
+    const auto children = sub->get_subcommands([](CLI::App*) { return true; });
+    if (!children.empty()) {
+      std::string names;
+      for (const CLI::App* child : children) names += (names.empty() ? "" : ", ") + child->get_name();
+      line += ":\n" + dfvn_cli::wrap_text(names, 14);
+      line.pop_back();
+    }
+    text += line + "\n";
+  }
+  return text +
+         "\n"
+         "'dfvn-sample SUBCOMMAND --help' lists a subcommand's options and defaults; --help-all lists every one;\n"
+         "--version prints the version.\n";
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc == 1) {
-    std::fputs(usage().c_str(), stdout);
-    return 0;
-  }
   CLI::App app{"dfvn-sample: divergence-free vector noise (DFVN) in 2..8 dimensions: the field, curl-noise\n"
                "jittering of lattices, and the point-set statistics of 'Improving Curl Noise' (SIGGRAPH Asia 2025).",
                kProgram};
+  dfvn_cli::use_help_format(app);
   app.set_version_flag("--version", std::string(kProgram) + " " + DFVN_VERSION);
   app.set_help_all_flag("--help-all", "Print the help of every subcommand and exit");
   app.require_subcommand(1);
@@ -153,6 +205,10 @@ int main(int argc, char** argv) {
   const auto reproduce = dfvn_cli::add_reproduce_command(app);
   const auto stats = dfvn_cli::add_stats_command(app);
   const auto animate = dfvn_cli::add_animate_command(app);
+  if (argc == 1) {
+    std::fputs(usage(app).c_str(), stdout);
+    return 0;
+  }
 
   dfvn::remove_temporaries_on_signals();
   const std::vector<std::string> given(argv + 1, argv + argc);
@@ -167,7 +223,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    fail(with_safe_echoes(parse_error_message(app, e), given) + " (run with --help for the options)", 2);
+    fail(with_safe_echoes(parse_error_message(app, e, given), given) + " (run with --help for the options)", 2);
   } catch (const std::bad_alloc& e) {  // the library names what it allocates where it can; this is the rest
     fail(dynamic_cast<const dfvn::OutOfMemory*>(&e) ? e.what() : "out of memory; try a smaller problem");
   } catch (const std::exception& e) {

@@ -23,6 +23,7 @@
 #include "dfvn/mpi/mpi_sampling.hpp"
 #include "dfvn/sampling/method.hpp"
 
+#include "help_format.hpp"
 #include "options.hpp"
 
 namespace {
@@ -287,6 +288,7 @@ int main(int argc, char** argv) {
                "--rdf CSV and --json byte for byte (in the box and, with --periodic, on the torus), whatever the\n"
                "number of ranks or threads.",
                kMpiProgram};
+  dfvn_cli::use_help_format(app);
   app.set_version_flag("--version", std::string(kMpiProgram) + " " + DFVN_VERSION);
   Options options;
   add_options(app, options);

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -25,6 +26,44 @@ void fail(const std::string& message, int code) {
   const std::string line = dfvn::escape_bytes(message, false);
   std::fprintf(stderr, "%s: error: %s\n", kProgram, line.c_str());
   std::exit(code);
+}
+
+namespace {
+
+// Optimal string alignment distance: Levenshtein's edits plus the transposition of two neighbours.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i)
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t substitution = a[i - 1] == b[j - 1] ? 0 : 1;
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + substitution});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
+}
+
+std::string without_dashes(const std::string& name) { return name.substr(std::min(name.find_first_not_of('-'), name.size())); }
+
+}  // namespace
+
+std::vector<std::string> closest_names(const std::string& typed, const std::vector<std::string>& names) {
+  constexpr std::size_t kMaxEdits = 2;
+  constexpr std::size_t kMaxTied = 3;  // more names tied than this: no suggestion at all
+  const std::string word = without_dashes(typed);
+  std::size_t best = kMaxEdits + 1;
+  std::vector<std::string> closest;
+  for (const std::string& name : names) {
+    if (name.starts_with("--") != typed.starts_with("--")) continue;  // a long name for a long one
+    const std::size_t distance = edit_distance(word, without_dashes(name));
+    if (distance == 0 || 2 * distance >= word.size() || distance > best) continue;
+    if (distance < best) closest.clear();
+    best = distance;
+    if (std::find(closest.begin(), closest.end(), name) == closest.end()) closest.push_back(name);
+  }
+  if (closest.size() > kMaxTied) closest.clear();
+  return closest;
 }
 
 namespace {
@@ -135,7 +174,7 @@ void add_noise_option(CLI::App& cmd, std::string& noise, bool steerable) {
                  "gradient noise, the noise of the paper's image-warping shader) or simplex-separate (the same\n"
                  "simplex noise, one traversal per function at an offset point: in 3D bitangent noise's reference\n"
                  "form)" +
-                     std::string(steerable ? " or steerable (seed 002's steerable Perlin noise, 2D-4D: elongated along\n"
+                     std::string(steerable ? " or steerable (Rice's steerable Perlin noise, 2D-4D: elongated along\n"
                                              "--steer-dir or the circular --steer-field)"
                                            : ""))
       ->capture_default_str()
@@ -157,7 +196,7 @@ void SteerOptions::add_to(CLI::App& cmd) {
                               "across u it is (4 - K) / (N - 1) - 1e-4, so smaller K elongates more")
                    ->capture_default_str();
   options[3] = cmd.add_option("--steer-quality", quality,
-                              "With --noise steerable: seed 002's quality Q in 0..N, the corners -Q..Q+1 along each axis\n"
+                              "With --noise steerable: the quality Q in 0..N, the corners -Q..Q+1 along each axis\n"
                               "((2Q+2)^N per function), the eigenvalue along u K / (Q + 1): larger Q elongates more and\n"
                               "costs more; 0 is the single-order noise")
                    ->capture_default_str()
@@ -367,7 +406,7 @@ dfvn::FlowOptions BridsonOptions::flow() const {
 
 void add_rotation_option(CLI::App& cmd, std::string& rotation) {
   cmd.add_option("--rotation", rotation,
-                 "How --noise simplex's gradients turn with --phase in 3D (McEwan & Gustavson, seed 001): two-vector\n"
+                 "How --noise simplex's gradients turn with --phase in 3D (McEwan & Gustavson): two-vector\n"
                  "(p cos a + q sin a, q a second hashed gradient made orthogonal to p: every dimension; phase 0 the\n"
                  "basis's own noise), fast (one Fibonacci-sphere hash: axis and offset, no phase gives a static set)\n"
                  "or well-behaved (p on the Fibonacci sphere, q by the rotation taking z to p: phase 0 is the\n"

@@ -22,6 +22,11 @@ inline constexpr const char* kProgram = "dfvn-sample";
 // message into a visible escape, so nothing reaches the terminal raw.
 [[noreturn]] void fail(const std::string& message, int code = 1);
 
+// The names closest to a mistyped one by edit distance (insertions, deletions, substitutions and
+// transpositions of neighbours, leading dashes ignored): the one closest, or the few tied for closest;
+// none when even the closest differs in more than 2 characters or in half of the word.
+std::vector<std::string> closest_names(const std::string& typed, const std::vector<std::string>& names);
+
 // Finite numbers > 0 and >= 0. CLI11's PositiveNumber would print its whole range, DBL_MAX included,
 // and accepts no NaN check.
 extern const CLI::Validator kPositiveFinite;

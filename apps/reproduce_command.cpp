@@ -2,6 +2,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -44,6 +46,7 @@ struct ReproduceCommand : Subcommand {
   std::string setting = "shader";
   double frequency = 0.0, field_magnitude = 0.0;  // 0: the setting's
   CLI::Option* second_width_option = nullptr;
+  CLI::Option* height_option = nullptr;
   std::string table1_noise{dfvn::to_string(dfvn::kDefaultNoiseBasis)};
   ProgressOptions progress;
   int table1_realizations = dfvn::Table1Config{}.realizations;
@@ -61,12 +64,14 @@ struct ReproduceCommand : Subcommand {
   dfvn::BridsonConfig bridson;
 
   void add_to(CLI::App& parent) {
-    CLI::App* cmd = parent.add_subcommand("reproduce", "Regenerate the paper's tables and figures, ours beside the paper's.");
+    CLI::App* cmd = parent.add_subcommand("reproduce", "The paper's tables and figures, and the seed documents', ours beside theirs");
     cmd->require_subcommand(1);
     CLI::App* t1 = cmd->add_subcommand(
         "table1",
+        "Table 1 and Figure 4: packing of CNJ, jitter, Poisson disk and Sobol in 3D-7D\n\n"
         "Table 1 and Figure 4: CNJ, jittering, Poisson disk and Sobol point sets in 3D-7D under the paper protocol.\n"
-        "Writes DIR/table1.csv, DIR/rdf.csv, DIR/table1.md and (with gnuplot) DIR/figure4.png; prints table1.md as plain text.");
+        "Writes DIR/table1.csv (a row a realization), DIR/table1_summary.csv, DIR/rdf.csv, DIR/table1.md and (with\n"
+        "gnuplot) DIR/figure4.png; prints table1.md as plain text.");
     t1->add_option("--out", out1, kOutDirHelp)->capture_default_str();
     t1->add_option("--dims", dims, "Dimensions: a range or list within 3..7, e.g. 3-7 or 3,5")->capture_default_str();
     t1->add_option("--realizations", table1_realizations,
@@ -81,6 +86,7 @@ struct ReproduceCommand : Subcommand {
 
     CLI::App* t2 = cmd->add_subcommand(
         "table2",
+        "Table 2 and Figure 5: image warping error, Euler and RK4, with and without reprojection\n\n"
         "Table 2 and Figure 5: warp a wave image along 2D DFVN for t = 0.5 with Euler and RK4, 64 and 512 steps, 0, 1\n"
         "and 10 Newton reprojection steps, against 2048 RK4 steps; RMSE from float values at two resolutions; Figure 5's\n"
         "top row at several times t with 1000 RK4 steps. Writes DIR/table2.csv, DIR/table2.md, DIR/timeline.csv, the\n"
@@ -93,8 +99,12 @@ struct ReproduceCommand : Subcommand {
                    "(x in [0, 1] across it): per width is per unit length")
         ->capture_default_str()
         ->check(CLI::IsMember({"shader", "ours"}));
-    t2->add_option("--width", warp.width, "Image width in pixels")->capture_default_str()->check(CLI::Range(2, 20000));
-    t2->add_option("--height", warp.height, "Image height in pixels")->capture_default_str()->check(CLI::Range(2, 20000));
+    t2->add_option("--width", warp.width, "Image width in pixels; without --height the height keeps the 16:9 aspect")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 20000));
+    height_option = t2->add_option("--height", warp.height, "Image height in pixels")
+                        ->capture_default_str()
+                        ->check(CLI::Range(2, 20000));
     second_width_option = t2->add_option("--second-width", table2.second_width,
                    "Width of the second resolution (same aspect ratio) at which every RMSE is measured again; 0 = none;\n"
                    "default: half of --width (none when that is below 2 pixels a side)")
@@ -119,6 +129,7 @@ struct ReproduceCommand : Subcommand {
     CLI::App* s = cmd->add_subcommand(
         "cnj-study",
         fmt::format(
+            "CNJ against jitter at equal RMS displacement over frequency, step and steps\n\n"
             "CNJ (each noise basis) against random jitter over noise frequencies 0.1, 0.2, 0.35, 0.5, 1 cycles per\n"
             "spacing, step scales 0.2, 0.35, 0.5 and 1 or {} integration steps, compared at equal RMS displacement,\n"
             "neighbour disorder and lattice order (--lattice interior: interior points of a K^N lattice, nothing\n"
@@ -175,7 +186,8 @@ struct ReproduceCommand : Subcommand {
   void add_bridson(CLI::App* cmd) {
     CLI::App* b = cmd->add_subcommand(
         "bridson",
-        "Bridson et al. 2007's Figure 2 (seed 003) with --octaves, --amplitude, --body, --vortex and --viscous: a wake\n"
+        "Bridson et al. 2007's Figure 2: a wake and a vortex ring, 3D curl noise with its toolbox\n\n"
+        "Bridson et al. 2007's Figure 2 with --octaves, --amplitude, --body, --vortex and --viscous: a wake\n"
         "behind a moving sphere and a vortex ring pushing fluid past a sphere before turbulent mixing, 3D curl noise in\n"
         "the unit cube, traced particles drawn from the side; and the checks from the field itself (divergence, c . n on\n"
         "the walls and the sphere, the moving body's normal velocity, no-slip with --viscous, energy per octave). Writes\n"
@@ -213,11 +225,12 @@ struct ReproduceCommand : Subcommand {
     bridson.seed = common_bridson.seed;
     bridson.threads = common_bridson.threads;
     bridson.validate();
+    dfvn::check_figure_prerequisites();  // before the output folder is made
     dfvn::check_outputs(files_in(bridson.out_dir, dfvn::bridson_output_files()), {bridson.out_dir});
     dfvn::ProgressReporter* reporter = progress.make(dfvn::bridson_stage_weights(bridson));
     const auto result = dfvn::run_bridson(bridson, reporter->callback());
     reporter->complete();
-    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_bridson(result)).c_str(), stdout);
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_bridson(result, log)).c_str(), stdout);
   }
 
   void run_cnj_study() {
@@ -239,6 +252,7 @@ struct ReproduceCommand : Subcommand {
   void add_integration(CLI::App* cmd) {
     CLI::App* t3 = cmd->add_subcommand(
         "integration",
+        "Integration error of every method on Genz's six families, 3D-7D\n\n"
         "Section 6.1's open question: integrate Genz's six test families with every method's point sets in 3D-7D, at\n"
         "several sizes, over R realizations. Writes DIR/integration.csv, DIR/integration_slopes.csv, DIR/integration.md\n"
         "(tables and a reading) and (with gnuplot) DIR/integration_<N>d.png; prints integration.md as plain text.");
@@ -277,6 +291,7 @@ struct ReproduceCommand : Subcommand {
   void add_figure8(CLI::App* cmd) {
     CLI::App* f = cmd->add_subcommand(
         "figure8",
+        "Figure 8: animated CNJ, drop mode against the conformant field\n\n"
         "Figure 8 (Section 5.4): curl noise jittering animated over F frames in the unit square and cube, drop mode\n"
         "(the 2023 method: the free field, particles pop in and out of the domain) against the conformant field\n"
         "(Eq. 13: every particle stays inside), as 'dfvn-sample animate' runs them. Writes DIR/figure8_frames.csv\n"
@@ -327,8 +342,9 @@ struct ReproduceCommand : Subcommand {
   void add_constructions(CLI::App* cmd) {
     CLI::App* c = cmd->add_subcommand(
         "constructions",
-        "Issue 26: the divergence-free constructions side by side in 2D and 3D on every noise basis at one frequency:\n"
-        "curl noise (Bridson et al. 2007; no reprojection exists for it), bitangent noise (seed 004: the 3D cross\n"
+        "Curl, bitangent and DFVN noise side by side: divergence, speed, tracing error\n\n"
+        "The divergence-free constructions side by side in 2D and 3D on every noise basis at one frequency:\n"
+        "curl noise (Bridson et al. 2007; no reprojection exists for it), bitangent noise (the 3D cross\n"
         "product of simplex gradients, fused 'simplex' and separate 'simplex-separate') and DFVN. Per field: |div c|/|Dc|\n"
         "on uniform random points, ns per evaluation, RMS |c| and its quantiles, the end-point RMSE of Euler and RK4 with\n"
         "64 and 512 steps against 2048 RK4 steps (with and without Gauss-Newton reprojection where it exists), and the\n"
@@ -345,7 +361,7 @@ struct ReproduceCommand : Subcommand {
         ->capture_default_str()
         ->check(real_in(1e-12, 100.0));
     c->add_option("--divergence-points", constructions.divergence_points,
-                  "Uniform random points per field for |div c|/|Dc| (issue 26's targets are stated for 100000)")
+                  "Uniform random points per field for |div c|/|Dc| (the targets are stated for 100000)")
         ->capture_default_str()
         ->check(CLI::Range(100, 100000000));
     c->add_option("--speed-points", constructions.speed_points,
@@ -380,6 +396,7 @@ struct ReproduceCommand : Subcommand {
   void add_surface_figures(CLI::App* cmd) {
     CLI::App* f6 = cmd->add_subcommand(
         "figure6",
+        "Figure 6: a texture on the sphere warped with and without projection\n\n"
         "Figure 6 (Section 5.3): a texture on the unit sphere warped along the 3D field tangent to the sphere (f_1 = |x|^2\n"
         "up to a constant): RK4 at 32 and 128 steps, without and with projection (Gauss-Newton reprojection), against\n"
         "2048 RK4 steps. Writes DIR/figure6.csv (RMSE and the drift of |x| from 1 per setting), DIR/figure6.md, and\n"
@@ -400,6 +417,7 @@ struct ReproduceCommand : Subcommand {
 
     CLI::App* f7 = cmd->add_subcommand(
         "figure7",
+        "Figure 7: a pattern warped inside a disc and a ball that no trace leaves\n\n"
         "Figure 7 (Section 5.4): a ring pattern in the unit square warped along 2D DFVN bounded by the disc of radius 1/2\n"
         "(Eq. 13), its 3D half (the ball of radius 1/2, central slices) and the paper's own construction beside Eq. 13.\n"
         "Writes DIR/figure7.csv (the samples that leave the disc, the change outside it), DIR/figure7_profile.csv (the\n"
@@ -437,11 +455,13 @@ struct ReproduceCommand : Subcommand {
     const bool ramp = config.ramp_figure;
     CLI::App* f = cmd->add_subcommand(
         config.name(),
-        fmt::format("{} (Section 5.5): particle traces over the sloped surface h = SX x + SY y (the 2D field lifted onto\n"
+        fmt::format("{}: particles traced over a lifted slope{}\n\n"
+                    "{} (Section 5.5): particle traces over the sloped surface h = SX x + SY y (the 2D field lifted onto\n"
                     "it, --lift plane:SX,SY; figure9 with a hill in the middle, --bump), {} the vertical ramp (--lift-ramp);\n"
                     "the displacement covariance's\n"
                     "principal direction against the slope direction. Writes DIR/{}.csv, DIR/{}_traces.csv, DIR/{}.md and\n"
                     "DIR/{}.png; prints {}.md as plain text.",
+                    ramp ? "Figure 9" : "Figure 10", ramp ? " with a hill and the vertical ramp" : " without the ramp",
                     ramp ? "Figure 9" : "Figure 10", ramp ? "with" : "without", config.name(), config.name(),
                     config.name(), config.name(), config.name()));
     f->add_option("--out", config.out_dir, kOutDirHelp)->capture_default_str();
@@ -486,11 +506,12 @@ struct ReproduceCommand : Subcommand {
     figure6.seed = common6.seed;
     figure6.threads = common6.threads;
     figure6.validate();
-    dfvn::check_outputs(files_in(figure6.out_dir, dfvn::figure6_output_files()), {figure6.out_dir});
+    dfvn::check_figure_prerequisites();  // before the output folder is made
+    dfvn::check_outputs(files_in(figure6.out_dir, dfvn::figure6_output_files(figure6)), {figure6.out_dir});
     dfvn::ProgressReporter* reporter = progress.make(dfvn::figure6_stage_weights(figure6));
     const auto result = dfvn::run_figure6(figure6, reporter->callback());
     reporter->complete();
-    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_figure6(result)).c_str(), stdout);
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_figure6(result, log)).c_str(), stdout);
   }
 
   void run_figure7() {
@@ -498,12 +519,13 @@ struct ReproduceCommand : Subcommand {
     figure7.seed = common7.seed;
     figure7.threads = common7.threads;
     figure7.validate();
+    dfvn::check_figure_prerequisites();  // before the output folder is made
     dfvn::check_outputs(files_in(figure7.out_dir, dfvn::figure7_output_files()), {figure7.out_dir});
     dfvn::ProgressReporter* reporter = progress.make(1);
     const dfvn::StageProgress stage = reporter->callback();
     const auto result = dfvn::run_figure7(figure7, [&](double f) { if (stage) stage("figure7", f); });
     reporter->complete();
-    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_figure7(result)).c_str(), stdout);
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_figure7(result, log)).c_str(), stdout);
   }
 
   void run_slope_figure(dfvn::Figure9Config& config, const std::vector<double>& slope, const std::string& noise,
@@ -515,13 +537,14 @@ struct ReproduceCommand : Subcommand {
     config.seed = common.seed;
     config.threads = common.threads;
     config.validate();
+    dfvn::check_figure_prerequisites();  // before the output folder is made
     dfvn::check_outputs(files_in(config.out_dir, dfvn::figure9_output_files(config)), {config.out_dir});
     dfvn::ProgressReporter* reporter = progress.make(1);
     const dfvn::StageProgress stage = reporter->callback();
     const std::string name = config.name();
     const auto result = dfvn::run_figure9(config, [&](double f) { if (stage) stage(name, f); });
     reporter->complete();
-    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_figure9(result)).c_str(), stdout);
+    std::fputs(dfvn::markdown_as_plain_text(dfvn::write_figure9(result, log)).c_str(), stdout);
   }
 
   static void log(const std::string& line) { std::fprintf(stderr, "%s: %s\n", kProgram, line.c_str()); }
@@ -548,7 +571,12 @@ struct ReproduceCommand : Subcommand {
     dfvn::WarpConfig& config = table2.warp;
     config = dfvn::warp_config(table2.setting);
     config.width = warp.width;
-    config.height = warp.height;
+    // --width alone keeps the default image's aspect (384 x 216), rounded to whole pixels, at least 2.
+    const dfvn::WarpConfig default_size;
+    config.height = height_option->count() > 0
+                        ? warp.height
+                        : std::max(2, static_cast<int>(std::lround(static_cast<double>(warp.width) * default_size.height /
+                                                                    default_size.width)));
     config.samples = warp.samples;
     if (frequency > 0.0) config.frequency = frequency;
     if (field_magnitude > 0.0) config.field_magnitude = field_magnitude;

@@ -49,8 +49,10 @@ struct SampleCommand : Subcommand {
   std::string stats_path = "-";
   std::string rdf_path;
   std::string points_dir;
+  bool one_point_file = false;  // --points FILE.ext with one method (choose_point_file)
   std::string json_path;
   std::string report_path;
+  std::string summary_path;
   std::string format = "csv";
   std::string domain{dfvn::to_string(dfvn::kDefaultDomainKind)};
   std::string domain_mode = "conformant";
@@ -75,6 +77,7 @@ struct SampleCommand : Subcommand {
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
         "sample",
+        "The main job: point sets of every method and their nearest-neighbour statistics\n\n"
         "Jitter a K^N lattice along the DFVN field (curl noise jittering, Section 5.1) and compare it with\n"
         "random jitter, Poisson disk sampling and Sobol points by nearest-neighbour statistics (CSV).\n"
         "This is the main job: 'dfvn-sample --dim 7 --grid 6' (any options) runs it. Other subcommands:\n"
@@ -122,8 +125,10 @@ struct SampleCommand : Subcommand {
         ->capture_default_str()
         ->check(kUnsignedInteger);
     cmd->add_option("--points", points_dir,
-                    "Write each method's point sets to DIR/<method>.<format>, the M sets of --sets M in one file;\n"
-                    "'-' = standard output (one method only)");
+                    "Write the point sets: with one method to FILE when its name ends in a point format's extension\n"
+                    "(.csv, .npy, .dat, .bin; .txt and .pts are dat), in that format; otherwise each method's to\n"
+                    "DIR/<method>.<format>. The M sets of --sets M go into one file; each file gets its sidecar\n"
+                    "FILE.json. '-' = standard output (one method; no statistics there unless -o names a file)");
     format_option = cmd->add_option("--format", format,
                                     "Point file format (of --points): csv (header x0..x{N-1}; one set only), npy (float64,\n"
                                     "(points, N); M sets: (M, points, N), sets of one size), dat (coordinates separated by\n"
@@ -135,6 +140,10 @@ struct SampleCommand : Subcommand {
     cmd->add_option("--json", json_path,
                     "Also write the run as JSON: parameters, every method's statistics and derived values ('-' = standard\n"
                     "output)");
+    cmd->add_option("--summary", summary_path,
+                    "Also write the summary over the realizations as CSV ('-' = standard output): per method and\n"
+                    "statistic the mean, sd and standard error over the R sets of --realizations R >= 2 (a column\n"
+                    "constant over them, a setting, is not summarised); the JSON holds them too");
     cmd->add_option("--report", report_path,
                     "Also write the verdict as Markdown: per statistic (nn_min, nn_q01, nn_median_scaled) the methods\n"
                     "ranked, each against jitter-matched and Poisson disk as a ratio, and with --realizations R the\n"
@@ -244,9 +253,9 @@ struct SampleCommand : Subcommand {
         ->capture_default_str()
         ->check(CLI::Range(0, 1 << 30));
     cmd->add_option("-m,--sets,--realizations", realizations,
-                    "Realizations R: independently seeded repeats, seeds s..s+R-1 (-m/--sets M as in UTK); adds per\n"
-                    "method the mean and sd of every real statistic (rows stat = mean, sd); --points writes a\n"
-                    "method's R sets into one file")
+                    "Realizations R: independently seeded repeats, seeds s..s+R-1 (-m/--sets M as in UTK): one row\n"
+                    "a set; --summary and --json add their mean, sd and standard error; --points writes a method's R\n"
+                    "sets into one file")
         ->capture_default_str()
         ->check(CLI::Range(1, 100000));
     progress.add_to(*cmd);
@@ -311,6 +320,7 @@ struct SampleCommand : Subcommand {
     config.cnj.transform.rotation = dfvn::parse_gradient_rotation(rotation);
     if (config.cnj.transform.active())
       dfvn::check_transform_available(config.cnj.transform, config.dimension, config.cnj.domain == dfvn::DomainKind::torus);
+    choose_point_file();
     config.compute_statistics = !no_stats;
     config.compute_rdf = !rdf_path.empty();
     choose_streaming();
@@ -321,19 +331,21 @@ struct SampleCommand : Subcommand {
 
     // Check every destination before the work starts; each file is then written whole or not at all.
     std::vector<std::pair<std::string, std::string>> outputs;
-    if (!no_stats)
+    if (!no_stats && !stats_path.empty())
       outputs.emplace_back(stats_option->count() > 0 ? "--output" : "the statistics (default --output -)", stats_path);
     if (!rdf_path.empty()) outputs.emplace_back("--rdf", rdf_path);
     if (!json_path.empty()) outputs.emplace_back("--json", json_path);
     if (!report_path.empty()) outputs.emplace_back("--report", report_path);
+    if (!summary_path.empty()) outputs.emplace_back("--summary", summary_path);
     if (points_dir == "-") outputs.emplace_back("--points", points_dir);
     const bool points_to_files = !points_dir.empty() && points_dir != "-";
+    const bool points_folder = points_to_files && !one_point_file;
     if (points_to_files)
       for (dfvn::Method m : config.methods) {
         outputs.emplace_back("--points (" + point_file_name(m) + ")", point_file(m));
         outputs.emplace_back("--points (" + point_file_name(m) + ".json)", dfvn::point_sidecar_path(point_file(m)));
       }
-    dfvn::check_outputs(outputs, points_to_files ? std::vector<std::string>{points_dir} : std::vector<std::string>{},
+    dfvn::check_outputs(outputs, points_folder ? std::vector<std::string>{points_dir} : std::vector<std::string>{},
                         transform.input_files());
     for (const std::string& warning : dfvn::sampling_warnings(config))
       if (config.count > 0 || !progress.quiet)  // a count the user chose deserves its warning even with -q
@@ -399,12 +411,13 @@ struct SampleCommand : Subcommand {
         write_sidecar(first_results[m], seeds, counts);
       }
     }
-    if (realizations > 1)
-      stats += dfvn::realization_summary_rows(stats.substr(0, stats.find('\n')), realization_rows, {"dim", "grid", "method"}, "seed");
+    const std::string summary =
+        dfvn::realization_summary_csv(stats.substr(0, stats.find('\n')), realization_rows, {"dim", "grid", "method"}, "seed");
+    if (!summary_path.empty()) dfvn::write_file_atomically(summary_path, summary);
     config.seed = common.seed;
     if (!json_path.empty()) dfvn::write_file_atomically(json_path, dfvn::sampling_json(config, runs, !no_timing));
     if (!rdf_path.empty()) dfvn::write_file_atomically(rdf_path, rdf);
-    if (!no_stats) dfvn::write_file_atomically(stats_path, stats);
+    if (!no_stats && !stats_path.empty()) dfvn::write_file_atomically(stats_path, stats);
     report_verdict(runs);
   }
 
@@ -508,7 +521,7 @@ struct SampleCommand : Subcommand {
     if (!json_path.empty())
       dfvn::write_file_atomically(json_path, dfvn::sampling_json(config, {{config.seed, results}}, !no_timing));
     if (!rdf_path.empty()) dfvn::write_file_atomically(rdf_path, rdf);
-    if (!no_stats) dfvn::write_file_atomically(stats_path, stats);
+    if (!no_stats && !stats_path.empty()) dfvn::write_file_atomically(stats_path, stats);
     report_verdict({{config.seed, results}});
   }
 
@@ -530,6 +543,9 @@ struct SampleCommand : Subcommand {
         std::find(config.methods.begin(), config.methods.end(), dfvn::Method::cnj) != config.methods.end())
       throw std::invalid_argument("--stream --points - --format " + format + ": drop mode's point count is known only at "
                                   "the end and goes first in the file, which needs a regular file (or --format dat, csv)");
+    if (!summary_path.empty() && realizations < 2)
+      throw std::invalid_argument("--summary summarises the sets of --realizations R: give R >= 2");
+    if (!summary_path.empty() && no_stats) throw std::invalid_argument("--no-stats computes no statistics to summarise");
     if (realizations > 1 && !rdf_path.empty())
       throw std::invalid_argument("--rdf takes one realization; drop it or --sets");
     if (realizations > 1 && !points_dir.empty() && format == "csv")
@@ -576,9 +592,45 @@ struct SampleCommand : Subcommand {
     return false;
   }
 
-  std::string point_file_name(dfvn::Method m) const { return std::string(dfvn::to_string(m)) + "." + format; }
+  std::string point_file_name(dfvn::Method m) const {
+    return one_point_file ? std::filesystem::path(points_dir).filename().string()
+                          : std::string(dfvn::to_string(m)) + "." + format;
+  }
   std::string point_file(dfvn::Method m) const {
-    return points_dir == "-" ? points_dir : (std::filesystem::path(points_dir) / point_file_name(m)).string();
+    return points_dir == "-" || one_point_file ? points_dir
+                                               : (std::filesystem::path(points_dir) / point_file_name(m)).string();
+  }
+
+  // The point format an extension names, as UTK's tools read them (.txt and .pts are its text format);
+  // empty for any other name, which is a folder.
+  static std::string point_format_of(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (extension == ".csv" || extension == ".npy" || extension == ".dat" || extension == ".bin") return extension.substr(1);
+    if (extension == ".txt" || extension == ".pts") return "dat";
+    return {};
+  }
+
+  // --points FILE.ext with one method: that file, in the extension's format (UTK's -o habit); with
+  // several methods such a name is refused, since a folder named like a file is what nobody means.
+  // '-' (standard output) without -o: the statistics are not written there.
+  void choose_point_file() {
+    if (points_dir == "-" && stats_option->count() == 0) {
+      if (json_path.empty() && rdf_path.empty() && report_path.empty()) no_stats = true;
+      stats_path.clear();
+    }
+    const std::string extension_format = point_format_of(points_dir);
+    if (points_dir.empty() || points_dir == "-" || extension_format.empty()) return;
+    if (config.methods.size() != 1)
+      throw std::invalid_argument(fmt::format("--points {} names one file, but --methods names {} methods: give one method, "
+                                              "or a folder for one file each",
+                                              dfvn::quote_for_message(points_dir, dfvn::kMaxPathEchoChars),
+                                              config.methods.size()));
+    if (format_option->count() > 0 && format != extension_format)
+      throw std::invalid_argument("--format " + format + " contradicts the extension of --points " +
+                                  dfvn::quote_for_message(points_dir, dfvn::kMaxPathEchoChars) + " (" + extension_format + ")");
+    format = extension_format;
+    one_point_file = true;
   }
 };
 

@@ -47,6 +47,7 @@ struct StatsCommand : Subcommand {
   std::string spectrum_prefix;
   int spectrum_frequency = 0;  // 0: dfvn::default_spectrum_frequency
   std::string json_path;
+  std::string summary_path;
   bool discrepancy = false;
   bool no_timing = false;
   bool periodic = false;
@@ -58,13 +59,13 @@ struct StatsCommand : Subcommand {
   void add_to(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
         "stats",
+        "Statistics of any point set: CSV, NPY, dat (UTK, pbrt) or UTK's .bin\n\n"
         "Statistics of any point set in [0,S]^N, N = 1..8: nearest-neighbour summary and, with --discrepancy, the\n"
         "CD, WD, MD and L2-star discrepancies (as scipy.stats.qmc.discrepancy). One CSV row per set of every\n"
-        "input (columns input, set); inputs with several sets also get their mean and sd rows (column\n"
-        "stat = mean, sd, with set empty; value in the sets' rows).");
+        "input (columns input, set); --summary writes the mean, sd and standard error over each input's sets.");
     // A file or '-' (standard input): one that cannot be read is bad data (exit 1), said by the reader.
-    cmd->add_option("--input,inputs", inputs,
-                    "Point file to read, as --input FILE (repeatable) and/or positional FILE...; '-' = standard input (once;\n"
+    cmd->add_option("-i,--input,inputs", inputs,
+                    "Point file to read, as -i/--input FILE (repeatable) and/or positional FILE...; '-' = standard input (once;\n"
                     "needs --format). CSV (optional header), NPY float64/float32 (points, N) or (sets, points, N),\n"
                     "dat (whitespace-separated, '#' lines between sets) or UTK's binary .bin (one record a set)")
         ->required()
@@ -111,7 +112,13 @@ struct StatsCommand : Subcommand {
                   "identified), as for sets made periodic (UTK's periodic samplers); the same as --domain torus");
     output_option = cmd->add_option("-o,--output", output, "Main output: the statistics CSV ('-' = standard output)")
                         ->capture_default_str();
-    cmd->add_option("--json", json_path, "Also write the statistics as JSON: every set's values ('-' = standard output)");
+    cmd->add_option("--json", json_path,
+                    "Also write the statistics as JSON: every set's values and, for a file of several sets, their mean,\n"
+                    "sd and standard error ('-' = standard output)");
+    cmd->add_option("--summary", summary_path,
+                    "Also write the summary over each input's sets as CSV ('-' = standard output): per input and\n"
+                    "statistic the mean, sd and standard error over the sets (a column constant over them is not\n"
+                    "summarised); for inputs of several sets");
     cmd->add_flag("--no-timing", no_timing,
                   "Leave the seconds column (seconds_stats) empty (and out of --json): identical files for identical input");
     cmd->add_option("--spectrum", spectrum_prefix,
@@ -220,6 +227,7 @@ struct StatsCommand : Subcommand {
     std::vector<std::pair<std::string, std::string>> outputs = {
         {output_option->count() > 0 ? "--output" : "the statistics (default --output -)", output}};
     if (!json_path.empty()) outputs.emplace_back("--json", json_path);
+    if (!summary_path.empty()) outputs.emplace_back("--summary", summary_path);
     if (!rdf_path.empty()) outputs.emplace_back("--rdf", rdf_path);
     if (!spectrum_prefix.empty())
       for (const std::string& suffix : dfvn::spectrum_file_suffixes())
@@ -275,22 +283,29 @@ struct StatsCommand : Subcommand {
                                  dfvn::format_real(curve.r[k]), dfvn::format_real(curve.g[k]));
       }
     }
-    // Mean and sd rows for each input of several sets.
+    // --summary: mean, sd and standard error over the sets of each input of several sets.
     std::vector<std::string> summarised;
     for (std::size_t s = 0; s < sets.size(); ++s)
       if (std::count(owner.begin(), owner.end(), owner[s]) > 1) summarised.push_back(rows[s]);
-    if (!summarised.empty())
-      csv += dfvn::realization_summary_rows(csv.substr(0, csv.find('\n')), summarised, {"input", "dim"}, "set");
+    const std::string summary =
+        dfvn::realization_summary_csv(csv.substr(0, csv.find('\n')), summarised, {"input", "dim"}, "set");
     if (!spectrum_prefix.empty()) {
       const auto spectrum = dfvn::power_spectrum(sets, spectrum_k, common.threads,
                                                  [&](double f) { reporter->report("spectrum", f); });
       reporter->finish();
+      std::string what;
+      for (const std::string& input : inputs) what += (what.empty() ? "" : ", ") + (input == kStandardInput ? "standard input" : input);
+      std::size_t points = 0;
+      for (const dfvn::PointSet& set : sets) points += set.size();
+      what += fmt::format(" ({} set{}, {} points)", sets.size(), sets.size() == 1 ? "" : "s", points);
       dfvn::write_spectrum_files(spectrum_prefix, spectrum,
-                                 [](const std::string& line) { std::fprintf(stderr, "%s: %s\n", kProgram, line.c_str()); });
+                                 [](const std::string& line) { std::fprintf(stderr, "%s: %s\n", kProgram, line.c_str()); },
+                                 what);
     }
     reporter->complete();
     for (const std::string& warning : warnings) std::fprintf(stderr, "%s: warning: %s\n", kProgram, warning.c_str());
     if (!json_path.empty()) dfvn::write_file_atomically(json_path, dfvn::point_statistics_json(run));
+    if (!summary_path.empty()) dfvn::write_file_atomically(summary_path, summary);
     if (!rdf_path.empty()) dfvn::write_file_atomically(rdf_path, rdf_csv);
     dfvn::write_file_atomically(output, csv);
   }

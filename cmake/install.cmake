@@ -125,18 +125,19 @@ file(GLOB dfvn_plot_programs CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/scrip
 install(FILES ${dfvn_plot_programs} DESTINATION ${DFVN_DATA_DIR})
 
 # The man page, from `dfvn-sample --help-all` (the help of every subcommand, reproduce's included, each a
-# section), `--version` and the exit codes (cmake/exit-status.h2m), when help2man is there; without it the
-# page is skipped with a note.
+# section) and `--version`, with the sections help2man cannot read from the help (EXIT STATUS,
+# ENVIRONMENT, FILES) from cmake/dfvn-sample.h2m (the MPI runner's page: EXIT STATUS from
+# cmake/exit-status.h2m), when help2man is there; without it the page is skipped with a note.
 find_program(DFVN_HELP2MAN help2man)
 if(DFVN_HELP2MAN)
   set(dfvn_man_page ${CMAKE_CURRENT_BINARY_DIR}/dfvn-sample.1)
   add_custom_command(
     OUTPUT ${dfvn_man_page}
     COMMAND ${DFVN_HELP2MAN} --no-info --no-discard-stderr --help-option=--help-all
-            --include=${PROJECT_SOURCE_DIR}/cmake/exit-status.h2m
             "--name=divergence-free vector noise, curl-noise jittering and point-set statistics"
+            --include=${CMAKE_CURRENT_SOURCE_DIR}/cmake/dfvn-sample.h2m
             --output=${dfvn_man_page} $<TARGET_FILE:dfvn-sample>
-    DEPENDS dfvn-sample ${PROJECT_SOURCE_DIR}/cmake/exit-status.h2m
+    DEPENDS dfvn-sample ${CMAKE_CURRENT_SOURCE_DIR}/cmake/dfvn-sample.h2m
     COMMENT "Generating the man page dfvn-sample.1 with help2man")
   add_custom_target(dfvn-sample-man ALL DEPENDS ${dfvn_man_page})
   install(FILES ${dfvn_man_page} DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)

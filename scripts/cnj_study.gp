@@ -2,7 +2,7 @@
 # displacement, neighbour disorder and lattice order; one row per dimension. Lines: uniform jitter at
 # half-widths 0.05..0.7 spacings. Points: CNJ runs, one colour per noise basis. Compiled into dfvn-sample
 # (src/plot/gnuplot.hpp), which runs it as
-#   gnuplot -c cnj_study.gp OUT.png CNJ_STUDY.csv CNJ_STUDY_JITTER.csv DIMS BASES
+#   gnuplot -c cnj_study.gp OUT.png CNJ_STUDY.csv CNJ_STUDY_JITTER.csv DIMS BASES SETTINGS
 # Columns used: cnj_study.csv 1 dim, 3 noise, 7 rms_displacement, 10 neighbour_disorder, 11 lattice_order,
 # 14 cnj_nn_q01; cnj_study_jitter.csv 1 dim, 3 rms, 4 disorder, 5 order, 7 nn_q01.
 array cnj_columns[3] = [7, 10, 11]
@@ -10,10 +10,10 @@ array jitter_columns[3] = [3, 4, 5]
 array xlabels[3] = ["RMS displacement (spacings)", "neighbour disorder (spacings)", "lattice order (1 = lattice)"]
 rows = words(ARG4)
 bases = words(ARG5)
-set terminal pngcairo size 1500, 300 * rows + 30 font 'sans,9'
+set terminal pngcairo size 1500, 300 * rows + 50 font 'sans,9'
 set output ARG1
 set datafile separator comma
-set multiplot layout rows, 3 title 'CNJ vs jitter: 1% quantile of the NN distance (spacings) against displacement, disorder and lattice order'
+set multiplot layout rows, 3 title "CNJ vs jitter: 1% quantile of the NN distance (spacings) against displacement, disorder and lattice order\n".ARG6 noenhanced
 set grid
 set key top right noenhanced
 set ylabel 'nn q01 (spacings)'

@@ -12,7 +12,7 @@ rows = words(ARG3)
 set terminal pngcairo size 1400, 260 * rows + 40 font 'sans,9'
 set output ARG1
 set datafile separator comma
-set multiplot layout rows, 4 title "Radial distribution functions g(r), each set normalised by its own density (points over the box it fills), edge-corrected;\ndashed: median nearest-neighbour distance; ".ARG6 noenhanced
+set multiplot layout rows, 4 title "Figure 4: radial distribution functions g(r) under the paper's protocol, each set normalised by its own density (points over the box it fills),\nedge-corrected; dashed: median nearest-neighbour distance; ".ARG6 noenhanced
 set key off
 set grid
 # One y range for every panel, from the data: the panels compare at a glance.

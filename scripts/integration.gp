@@ -2,10 +2,10 @@
 # (bars: its standard error) against the number of points per method, and the Monte Carlo rate n^-1/2
 # as a dotted guide through random's first point. Compiled into dfvn-sample (src/plot/gnuplot.hpp),
 # which runs it as
-#   gnuplot -c integration.gp OUT.png INTEGRATION.csv DIM METHODS GUIDES
-# INTEGRATION.csv: columns dim,family,method,grid,points,rms_relative_error,standard_error,...
+#   gnuplot -c integration.gp OUT.png INTEGRATION.csv DIM METHODS GUIDES SETTINGS
+# INTEGRATION.csv: columns dim,family,method,grid,mean_points,rms_relative_error,standard_error,...
 # METHODS: the methods to draw ("cnj jitter ..."). GUIDES: per family in the order of `families`, the
-# guide's point "n e", or "- -" for none.
+# guide's point "n e", or "- -" for none. SETTINGS: the realizations and seeds, for the title.
 array families[6] = ["oscillatory", "product_peak", "corner_peak", "gaussian", "continuous", "discontinuous"]
 array codes[7] = ["cnj", "jitter", "pds", "sobol", "random", "halton", "lhs"]
 array colours[7] = ["#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#7f7f7f", "#ff7f0e", "#8c564b"]
@@ -19,7 +19,7 @@ do for [i = 1:methods] {
 set terminal pngcairo size 1500, 900 font 'sans,9'
 set output ARG1
 set datafile separator comma
-set multiplot layout 2, 3 title sprintf('%dD: RMS relative integration error over realizations (bars: standard error); dotted: n^{-1/2}', d)
+set multiplot layout 2, 3 title sprintf("Integration error, %dD: RMS relative error (bars: standard error) against points; dotted: n^{-1/2}\n%s", d, ARG6)
 set logscale xy
 set grid
 set format y '10^{%L}'

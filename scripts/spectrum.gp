@@ -1,9 +1,10 @@
 # Power spectrum figure: the periodogram (2D: the (k0, k1) plane; 3D: its k2 = 0 slice) on a log colour
 # scale, and the radial average with the flat level 1 of uniform random points and the lattice peak
-# marked. Compiled into dfvn-sample (src/plot/gnuplot.hpp), which runs it as
-#   gnuplot -c spectrum.gp OUT.png PREFIX.csv PREFIX_radial.csv DIM PEAK
+# marked. Compiled into dfvn-sample (dfvn/plot/gnuplot.hpp), which runs it as
+#   gnuplot -c spectrum.gp OUT.png PREFIX.csv PREFIX_radial.csv DIM PEAK WHAT
 # PREFIX.csv: k0,k1[,k2],power with k0 varying fastest; PREFIX_radial.csv: frequency,power,anisotropy_db,...
-# (anisotropy_db empty where it is not defined); PEAK: the lattice peak frequency n^(1/N).
+# (anisotropy_db empty where it is not defined); PEAK: the lattice peak frequency n^(1/N); WHAT: the
+# input's name, sets and points, for the title.
 # The DC term P(0) = n is left out of the colour scale (it would set its top and darken everything
 # else): it is drawn in the scale's top colour, and the scale spans the other frequencies' powers.
 dim = int(ARG4)
@@ -20,9 +21,9 @@ unset table
 # The largest power away from k = 0, for the top of the colour scale.
 stats $plane using (($1 != 0 || $2 != 0) ? $3 : NaN) nooutput
 power_top = STATS_max
-set terminal pngcairo size 1300, 560 font 'sans,10'
+set terminal pngcairo size 1300, 620 font 'sans,10'
 set output ARG1
-set multiplot layout 1, 2 title sprintf('Power spectrum of %dD points, averaged over the sets', dim)
+set multiplot layout 1, 2 title sprintf("Power spectrum of %s: %dD, averaged over the sets", ARG6, dim) noenhanced
 set title 'periodogram P(k)'.(dim == 3 ? ' (k2 = 0 slice)' : '').', log colour scale'
 set xlabel 'k0'; set ylabel 'k1'; set size ratio -1
 set logscale cb; set cbrange [0.01:power_top]; set palette defined (0 'black', 1 '#1f3f9f', 2 '#d62728', 3 'yellow')
@@ -38,6 +39,8 @@ if (peak <= STATS_max) {
 
 set title 'radial average and anisotropy'
 set xlabel '|k|'; set ylabel 'P'; set grid
+set key outside below center horizontal  # clear of the curves
+set bmargin 6
 # The anisotropy is empty where a shell's power is constant (identical points): draw it where it exists.
 stats ARG3 skip 1 using (valid(3) ? 1 : 0) nooutput
 if (STATS_sum > 0) {

@@ -91,9 +91,12 @@ void write_animation(const std::string& dir, const AnimationResult& result,
   write_file_atomically((folder / "trails.csv").string(), trails_csv(result, shown));
   std::string frames;
   for (int k : shown) frames += fmt::format("{}{}", frames.empty() ? "" : " ", k);
-  const std::string title = fmt::format("{}D CNJ animated, {} in the {}, {} lattice, phase step {} rad/frame",
-                                        o.dimension, to_string(o.cnj.domain_mode), to_string(o.cnj.domain),
-                                        to_string(o.lattice), format_real(o.phase_step, 4));
+  // The domain by its name in this dimension: the unit square and disc in 2D, the cube and ball from 3D on.
+  const bool cube = o.cnj.domain == DomainKind::cube;
+  const std::string domain = o.dimension == 2 ? (cube ? "unit square" : "disc") : (cube ? "unit cube" : "ball");
+  const std::string title = fmt::format("{}D CNJ animated, {} in the {}, {} lattice, phase step {} rad/frame, {} frames",
+                                        o.dimension, to_string(o.cnj.domain_mode), domain, to_string(o.lattice),
+                                        format_real(o.phase_step, 4), o.frames);
   draw_figure(PlotProgram::animation, (folder / "animation.png").string(),
               {(folder / "trails.csv").string(), std::to_string(o.dimension), frames,
                std::string(to_string(o.cnj.domain)), title},

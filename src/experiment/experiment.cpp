@@ -530,7 +530,7 @@ std::string stats_csv_header() {
   return "dim,grid,method,points,nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,"
          "median_displacement,frac_unmoved,neighbour_disorder,lattice_order,seconds_generate,seconds_stats,seed,"
          "protocol,domain,domain_side,requested,cycles_per_spacing,field_frequency,trace_time,dropped,skipped_updates,retraced,kept_at_site,"
-         "half_width,radius,saturated,notes,stat\n";
+         "half_width,radius,saturated,noise,mode,scramble,notes\n";
 }
 
 namespace {
@@ -539,6 +539,34 @@ namespace {
 std::string field_or_empty(const std::optional<double>& value) { return value ? format_real(*value) : std::string(); }
 std::string field_or_empty(const std::optional<std::uint64_t>& value) { return value ? std::to_string(*value) : std::string(); }
 std::string field_or_empty(const std::optional<bool>& value) { return value ? std::string(*value ? "1" : "0") : std::string(); }
+
+// The settings a method's row names in their own columns (noise and mode for CNJ, the scrambling for
+// Sobol and Halton), and the notes' words that remain.
+struct RowSettings {
+  std::string noise, mode, scramble, notes;
+};
+RowSettings row_settings(const SampleConfig& config, const MethodResult& r) {
+  RowSettings s;
+  s.notes = r.notes;
+  switch (r.plan.method) {
+    case Method::cnj:
+      s.noise = to_string(config.cnj.noise);
+      if (r.plan.domain.kind != DomainKind::sphere) s.mode = to_string(config.cnj.domain_mode);
+      s.notes = config.cnj.field == FieldKind::curl ? "curl noise field, no reprojection" : "";
+      break;
+    case Method::sobol:
+      s.scramble = to_string(config.scramble);
+      s.notes.clear();
+      break;
+    case Method::halton:
+      s.scramble = config.scramble == Scramble::owen ? "digit-permutation" : "none";
+      s.notes.clear();
+      break;
+    default:
+      break;
+  }
+  return s;
+}
 
 }  // namespace
 
@@ -555,7 +583,8 @@ std::string stats_csv_row(const SampleConfig& config, const MethodResult& r, boo
   const std::string seconds =
       timing ? fmt::format("{:.6f},{}", r.seconds_generate, r.measured ? fmt::format("{:.6f}", r.seconds_stats) : "") : ",";
   const GenerationFacts& f = r.facts;
-  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\",{}\n", config.dimension,
+  const RowSettings settings = row_settings(config, r);
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", config.dimension,
                      config.grid,
                      to_string(r.plan.method), r.point_count,
                      nearest, displacement, seconds, config.seed, to_string(config.protocol),
@@ -563,7 +592,8 @@ std::string stats_csv_row(const SampleConfig& config, const MethodResult& r, boo
                      r.plan.requested, field_or_empty(f.frequency), field_or_empty(f.field_frequency),
                      field_or_empty(f.trace_time), field_or_empty(f.dropped), field_or_empty(f.skipped_updates),
                      field_or_empty(f.retraced), field_or_empty(f.kept_at_site), field_or_empty(f.half_width),
-                     field_or_empty(f.radius), field_or_empty(f.saturated), r.notes, "value");
+                     field_or_empty(f.radius), field_or_empty(f.saturated), settings.noise, settings.mode,
+                     settings.scramble, csv_quoted(settings.notes));
 }
 
 std::string rdf_csv_header() { return "dim,method,r,g\n"; }

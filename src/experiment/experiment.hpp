@@ -149,16 +149,17 @@ MethodResult sample_method(const SampleConfig& config, Method method);
 std::vector<MethodResult> run_sampling(const SampleConfig& config, bool keep_points, const StageProgress& progress = {},
                                        const std::function<void(const MethodResult&)>& on_result = {});
 
-// CSV text. Stats: one row per method, header dim,grid,method,points,nn_min,nn_q01,nn_median,nn_mean,
-// nn_median_scaled,rms_displacement,median_displacement,frac_unmoved,neighbour_disorder,lattice_order,
-// seconds_generate,seconds_stats,seed,protocol,domain,domain_side,requested,cycles_per_spacing,field_frequency,
-// trace_time,dropped,skipped_updates,retraced,kept_at_site,half_width,radius,saturated,notes,stat (the
-// word "value": a realization; experiment/realizations.hpp adds the "mean" and "sd" rows). A column
-// that does not apply
-// is empty: the displacement columns for methods without a lattice (pds, sobol, random, halton, lhs),
-// the GenerationFacts columns for the other methods, the seconds with `timing` off (so that two runs
-// with the same seed give the same bytes). Every real number has a decimal point or an exponent
-// (io/csv.hpp's format_real), every count is an integer.
+// CSV text. Stats: one row per method, data rows only, header dim,grid,method,points,nn_min,nn_q01,
+// nn_median,nn_mean,nn_median_scaled,rms_displacement,median_displacement,frac_unmoved,neighbour_disorder,
+// lattice_order,seconds_generate,seconds_stats,seed,protocol,domain,domain_side,requested,
+// cycles_per_spacing,field_frequency,trace_time,dropped,skipped_updates,retraced,kept_at_site,half_width,
+// radius,saturated,noise,mode,scramble,notes (realizations: experiment/realizations.hpp's
+// realization_summary_csv makes the summary from these rows). A column that does not apply is empty: the
+// displacement columns for methods without a lattice (pds, sobol, random, halton, lhs), the
+// GenerationFacts columns for the other methods, noise and mode but for CNJ, scramble but for Sobol and
+// Halton, the seconds with `timing` off (so that two runs with the same seed give the same bytes). Every
+// real number has a decimal point or an exponent (io/csv.hpp's format_real: 9 significant digits), times
+// have 6 decimals, every count is an integer.
 std::string stats_csv_header();
 std::string stats_csv_row(const SampleConfig& config, const MethodResult& result, bool timing = true);
 // RDF: header dim,method,r,g and one row per bin.

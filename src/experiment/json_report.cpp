@@ -1,5 +1,7 @@
 #include "dfvn/experiment/json_report.hpp"
 
+#include <algorithm>
+
 #include <map>
 
 #include <nlohmann/json.hpp>
@@ -35,7 +37,8 @@ ordered_json displacement_json(const LatticeDisplacementSummary& d) {
           {"lattice_order", d.lattice_order}};
 }
 
-// Every number of every group's objects (by the key path "object.key") summarised as mean and sd, in
+// Every number of every group's objects (by the key path "object.key") that varies, summarised as
+// mean, sd and standard error, in
 // the order the keys first appear.
 ordered_json summary_json(const std::vector<std::pair<std::string, ordered_json>>& members) {
   std::vector<std::string> groups;
@@ -58,8 +61,14 @@ ordered_json summary_json(const std::vector<std::pair<std::string, ordered_json>
   for (const std::string& group : groups) {
     ordered_json entry = ordered_json::object();
     for (const std::string& path : keys[group]) {
-      const MeanSd s = mean_sd(values[group][path]);
-      entry[path] = {{"mean", s.mean}, {"sd", s.sd}};
+      const std::vector<double>& v = values[group][path];
+      // A value constant over the realizations (a setting) is not summarised, as in --summary's CSV; the
+      // sets' statistics always are.
+      const bool statistic = path.starts_with("nearest_neighbour.") || path.starts_with("displacement.") ||
+                             path.starts_with("discrepancy.");
+      if (!statistic && std::all_of(v.begin(), v.end(), [&](double x) { return x == v.front(); })) continue;
+      const MeanSd s = mean_sd(v);
+      entry[path] = {{"mean", s.mean}, {"sd", s.sd}, {"standard_error", standard_error(s, values[group][path].size())}};
     }
     summary[group] = std::move(entry);
   }

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string_view>
 
+#include <fmt/format.h>
+
 #include "dfvn/io/csv.hpp"
 
 namespace dfvn {
@@ -39,27 +41,39 @@ std::vector<std::string> split_csv(const std::string& line) {
   return fields;
 }
 
-// A real number as format_real writes it: a decimal point or an exponent ("1.0", "2e-07"); integers
-// ("512") and words are not reals, and nan or inf have no mean.
-bool parse_real(const std::string& text, double& value) {
-  if (text.empty() || text.find_first_of(".eE") == std::string::npos) return false;
+// A number in a CSV cell: a real as format_real writes it or an integer (a count); nan or inf have no
+// mean. Words and empty cells are not numbers.
+bool parse_number(const std::string& text, double& value) {
+  if (text.empty()) return false;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   return error == std::errc() && end == text.data() + text.size() && std::isfinite(value);
+}
+
+// The statistics of the point sets and the times: summarised even when they happen not to vary (two
+// sets with the same closest pair, two timings within a microsecond), unlike a constant setting.
+bool is_statistic(const std::string& column) {
+  static const std::vector<std::string> kStatistics = {
+      "nn_min", "nn_q01", "nn_median", "nn_mean", "nn_median_scaled", "rms_displacement", "median_displacement",
+      "frac_unmoved", "neighbour_disorder", "lattice_order", "cd", "wd", "md", "l2_star"};
+  return std::find(kStatistics.begin(), kStatistics.end(), column) != kStatistics.end() || column.starts_with("seconds");
 }
 
 std::size_t column_index(const std::vector<std::string>& columns, const std::string& name) {
   for (std::size_t c = 0; c < columns.size(); ++c)
     if (columns[c] == name) return c;
-  throw std::invalid_argument("realization_summary_rows: no column '" + name + "'");
+  throw std::invalid_argument("realization_summary_csv: no column '" + name + "'");
 }
 
 }  // namespace
 
-std::string realization_summary_rows(const std::string& header, const std::vector<std::string>& rows,
-                                     const std::vector<std::string>& group_columns, const std::string& label_column) {
+double standard_error(const MeanSd& s, std::size_t count) {
+  return count > 0 ? s.sd / std::sqrt(static_cast<double>(count)) : 0.0;
+}
+
+std::string realization_summary_csv(const std::string& header, const std::vector<std::string>& rows,
+                                    const std::vector<std::string>& group_columns, const std::string& label_column) {
   const std::vector<std::string> columns = split_csv(header);
   const std::size_t label = column_index(columns, label_column);
-  const std::size_t stat = column_index(columns, "stat");
   std::vector<std::size_t> group;
   for (const auto& name : group_columns) group.push_back(column_index(columns, name));
 
@@ -67,7 +81,7 @@ std::string realization_summary_rows(const std::string& header, const std::vecto
   std::vector<std::string> keys;
   for (const auto& row : rows) {
     std::vector<std::string> fields = split_csv(row);
-    if (fields.size() != columns.size()) throw std::invalid_argument("realization_summary_rows: ragged row: " + row);
+    if (fields.size() != columns.size()) throw std::invalid_argument("realization_summary_csv: ragged row: " + row);
     std::string key;
     for (std::size_t c : group) key += fields[c] + '\x1f';
     std::size_t g = 0;
@@ -80,30 +94,27 @@ std::string realization_summary_rows(const std::string& header, const std::vecto
   }
 
   std::string out;
+  for (const std::string& name : group_columns) out += name + ",";
+  out += "statistic,realizations,mean,sd,standard_error\n";
   for (const auto& members : groups) {
-    std::vector<std::string> mean_row(columns.size()), sd_row(columns.size());
+    std::string key;
+    for (std::size_t c : group) key += members.front()[c] + ",";
     for (std::size_t c = 0; c < columns.size(); ++c) {
-      if (std::find(group.begin(), group.end(), c) != group.end()) {
-        mean_row[c] = sd_row[c] = members.front()[c];
-        continue;
-      }
-      if (c == label || c == stat) continue;
+      if (c == label || std::find(group.begin(), group.end(), c) != group.end()) continue;
       std::vector<double> values;
+      bool varies = false;
       for (const auto& fields : members) {
         double v = 0.0;
-        if (!parse_real(fields[c], v)) break;
+        if (!parse_number(fields[c], v)) break;
+        varies = varies || fields[c] != members.front()[c];
         values.push_back(v);
       }
-      if (values.size() != members.size()) continue;
+      if (values.size() != members.size() || (!varies && !is_statistic(columns[c]))) continue;
       const MeanSd s = mean_sd(values);
-      mean_row[c] = format_real(s.mean);
-      sd_row[c] = format_real(s.sd);
-    }
-    mean_row[stat] = "mean";
-    sd_row[stat] = "sd";
-    for (const auto* row : {&mean_row, &sd_row}) {
-      for (std::size_t c = 0; c < columns.size(); ++c) out += (c ? "," : "") + (*row)[c];
-      out += '\n';
+      const double se = standard_error(s, values.size());
+      const bool seconds = columns[c].starts_with("seconds");
+      const auto real = [&](double v) { return seconds ? fmt::format("{:.6f}", v) : format_real(v); };
+      out += fmt::format("{}{},{},{},{},{}\n", key, columns[c], values.size(), real(s.mean), real(s.sd), real(se));
     }
   }
   return out;

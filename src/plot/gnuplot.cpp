@@ -37,6 +37,10 @@ std::string_view plot_program_name(PlotProgram program) {
     case PlotProgram::animation: return "animation.gp";
     case PlotProgram::figure8: return "figure8.gp";
     case PlotProgram::curl_obstacle: return "curl_obstacle.gp";
+    case PlotProgram::figure6: return "figure6.gp";
+    case PlotProgram::figure7: return "figure7.gp";
+    case PlotProgram::slope: return "slope.gp";
+    case PlotProgram::titled: return "titled.gp";
   }
   return "?";
 }
@@ -51,6 +55,10 @@ std::string_view plot_program_text(PlotProgram program) {
     case PlotProgram::animation: return kAnimationProgram;
     case PlotProgram::figure8: return kFigure8Program;
     case PlotProgram::curl_obstacle: return kCurlObstacleProgram;
+    case PlotProgram::figure6: return kFigure6Program;
+    case PlotProgram::figure7: return kFigure7Program;
+    case PlotProgram::slope: return kSlopeProgram;
+    case PlotProgram::titled: return kTitledProgram;
   }
   return "";
 }

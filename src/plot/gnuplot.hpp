@@ -23,6 +23,10 @@ enum class PlotProgram {
   animation,    // scripts/animation.gp: animate's strip of frames with trails
   figure8,      // scripts/figure8.gp: drop against conformant animation, count per frame and tracks
   curl_obstacle,  // scripts/curl_obstacle.gp: Bridson's Figure 1, curl noise streamlines around a disc
+  figure6,      // scripts/figure6.gp: the sphere warp's montage, a row of increasing t and the error maps
+  figure7,      // scripts/figure7.gp: the disc-bounded warp's montage, 2D and the 3D slices, labelled
+  slope,        // scripts/slope.gp: figure9 and figure10, traces over the height field with axes and arrows
+  titled,       // scripts/titled.gp: a square image over the unit square with axes and a title (bridson)
 };
 
 // "figure4.gp", ...; and the program's text as compiled in.

@@ -1,6 +1,8 @@
 // Bridson et al. 2007's Figure 2 (seed 003) and the checks of its toolbox (reproduce/bridson.hpp).
 #include "dfvn/reproduce/bridson.hpp"
 
+#include "dfvn/plot/gnuplot.hpp"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -338,7 +340,8 @@ BridsonResult run_bridson(const BridsonConfig& config, const StageProgress& prog
 }
 
 std::vector<std::string> bridson_output_files() {
-  return {"bridson.md", "bridson_checks.csv", "bridson_octaves.csv", "wake.png", "ring.png", "wake_traces.csv",
+  return {"bridson.md", "bridson_checks.csv", "bridson_octaves.csv", "wake.png", "ring.png", "wake_traces.png",
+          "ring_traces.png", "wake_traces.csv",
           "ring_traces.csv"};
 }
 
@@ -468,13 +471,14 @@ std::string bridson_markdown(const BridsonResult& r) {
       "- **Ring.** {} of the ring's particles end above the sphere's centre (z > {}), mean end height {} from {}: the ring "
       "carries its fluid up around the sphere, where the turbulence takes over.\n",
       format_real(ring_above, 3), format_real(kRingSphere.centre[2], 3), format_real(ring_z, 3), format_real(kRingStart[2], 3));
-  md += fmt::format("\nFiles: `bridson_checks.csv`, `bridson_octaves.csv`, `wake.png`, `ring.png`, `wake_traces.csv` and "
-                    "`ring_traces.csv` (every {}th step of each trace). {} seconds on {}.\n",
+  md += fmt::format("\nFiles: `bridson_checks.csv`, `bridson_octaves.csv`, `wake_traces.png` and `ring_traces.png` (the side "
+                    "views) and, with gnuplot, `wake.png` and `ring.png` (the same with axes and a title), `wake_traces.csv` "
+                    "and `ring_traces.csv` (every {}th step of each trace). {} seconds on {}.\n",
                     kTraceStride, format_real(r.seconds, 3), r.machine);
   return md;
 }
 
-std::string write_bridson(const BridsonResult& r) {
+std::string write_bridson(const BridsonResult& r, const std::function<void(const std::string&)>& log) {
   const std::filesystem::path dir(r.config.out_dir);
   const int steps = r.config.steps;
   std::string checks = "check,field,measured,bound,passed\n";
@@ -485,8 +489,9 @@ std::string write_bridson(const BridsonResult& r) {
   for (const BridsonOctaveEnergy& e : r.energies)
     octaves += fmt::format("{},{},{}\n", e.octave, format_real(e.measured), format_real(e.law));
   const std::string md = bridson_markdown(r);
-  write_png((dir / "wake.png").string(), side_view(r.wake_traces, steps, r.config.image, {{kWakeBody.centre, kWakeBody.radius}}));
-  write_png((dir / "ring.png").string(),
+  write_png((dir / "wake_traces.png").string(),
+            side_view(r.wake_traces, steps, r.config.image, {{kWakeBody.centre, kWakeBody.radius}}));
+  write_png((dir / "ring_traces.png").string(),
             side_view(r.ring_traces, steps, r.config.image,
                       {{Vec<3>(kRingSphere.centre[0], kRingSphere.centre[1], kRingSphere.centre[2]), kRingSphere.radius}}));
   write_file_atomically((dir / "bridson_checks.csv").string(), checks);
@@ -494,6 +499,17 @@ std::string write_bridson(const BridsonResult& r) {
   write_file_atomically((dir / "wake_traces.csv").string(), traces_csv(r.wake_traces, steps));
   write_file_atomically((dir / "ring_traces.csv").string(), traces_csv(r.ring_traces, steps));
   write_file_atomically((dir / "bridson.md").string(), md);
+  const BridsonConfig& c = r.config;
+  const std::string settings =
+      fmt::format("3D curl noise, {} octaves from {} cycles per unit length (gain {})\n{}x{} particles, {} RK4 steps, seed {}",
+                  c.octaves, format_real(c.frequency, 6), format_real(c.octave_gain, 4), c.grid, c.grid, steps, c.seed);
+  for (const auto& [name, title] :
+       {std::pair<std::string, std::string>{"wake", "Bridson et al. 2007, Figure 2: the wake behind a moving, spinning sphere"},
+        {"ring", "Bridson et al. 2007, Figure 2: a vortex ring carrying fluid past a sphere"}})
+    draw_figure(PlotProgram::titled, (dir / (name + ".png")).string(),
+                {(dir / (name + "_traces.png")).string(), title, settings + "; side view, nearer traces darker", "x",
+                 "z (up)", std::to_string(c.image)},
+                log ? log : std::function<void(const std::string&)>([](const std::string&) {}));
   return md;
 }
 

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -63,7 +64,9 @@ BridsonResult run_bridson(const BridsonConfig& config, const StageProgress& prog
 std::vector<double> bridson_stage_weights(const BridsonConfig& config);
 // DIR/bridson.md, DIR/bridson_checks.csv, DIR/bridson_octaves.csv, DIR/wake.png, DIR/ring.png (side views, x right,
 // z up), DIR/wake_traces.csv and DIR/ring_traces.csv. Returns the Markdown.
-std::string write_bridson(const BridsonResult& result);
+// `log` says how to get the titled wake.png and ring.png without gnuplot (wake_traces.png, ring_traces.png:
+// the side views alone, always written).
+std::string write_bridson(const BridsonResult& result, const std::function<void(const std::string&)>& log = {});
 std::vector<std::string> bridson_output_files();
 std::string bridson_markdown(const BridsonResult& result);
 

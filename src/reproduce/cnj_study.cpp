@@ -567,22 +567,21 @@ std::string write_cnj_study(const CnjStudyResult& result, const Log& log) {
       "h_disorder,jitter_disorder_nn_min,jitter_disorder_nn_q01,h_order,jitter_order_nn_min,jitter_order_nn_q01,dropped_fraction,steps\n";
   for (const CnjStudyRow& r : result.rows)
   {
-    // Reals as format_real writes them ("1.0", never "1"): the frequency and step scale to 9 digits (as
-    // given), the measurements to 6.
+    // Reals as format_real writes them ("1.0", never "1"), to 9 significant digits as every statistic.
     rows += fmt::format("{},{},{},{},{},{}", r.dimension, r.grid, to_string(r.basis), format_real(r.frequency),
                         format_real(r.step_scale), r.seed);
     for (double v : {r.rms_displacement, r.median_over_rms, r.fraction_unmoved, r.neighbour_disorder, r.lattice_order,
                      r.skipped_update_fraction, r.cnj.nn_min, r.cnj.nn_q01, r.h_rms, r.jitter_rms.nn_min,
                      r.jitter_rms.nn_q01, r.h_disorder, r.jitter_disorder.nn_min, r.jitter_disorder.nn_q01, r.h_order,
                      r.jitter_order.nn_min, r.jitter_order.nn_q01, r.dropped_fraction})
-      rows += ',', rows += format_real(v, 6);
+      rows += ',', rows += format_real(v);
     rows += fmt::format(",{}\n", r.steps);
   }
   std::string curve = "dim,half_width,rms_displacement,neighbour_disorder,lattice_order,nn_min,nn_q01\n";
   for (const JitterCurvePoint& p : result.jitter_curve)
-    curve += fmt::format("{},{},{},{},{},{},{}\n", p.dimension, format_real(p.half_width), format_real(p.rms_displacement, 6),
-                         format_real(p.neighbour_disorder, 6), format_real(p.lattice_order, 6),
-                         format_real(p.packing.nn_min, 6), format_real(p.packing.nn_q01, 6));
+    curve += fmt::format("{},{},{},{},{},{},{}\n", p.dimension, format_real(p.half_width), format_real(p.rms_displacement),
+                         format_real(p.neighbour_disorder), format_real(p.lattice_order), format_real(p.packing.nn_min),
+                         format_real(p.packing.nn_q01));
   const std::string md = cnj_study_markdown(result);
   write_file_atomically((dir / "cnj_study.csv").string(), rows);
   write_file_atomically((dir / "cnj_study_jitter.csv").string(), curve);
@@ -592,7 +591,10 @@ std::string write_cnj_study(const CnjStudyResult& result, const Log& log) {
   for (const CnjStudyRow& r : result.rows)
     if (bases.find(std::string(to_string(r.basis)) + " ") == std::string::npos) bases += std::string(to_string(r.basis)) + " ";
   draw_figure(PlotProgram::cnj_study, (dir / "cnj_study.png").string(),
-              {(dir / "cnj_study.csv").string(), (dir / "cnj_study_jitter.csv").string(), dims, bases}, log);
+              {(dir / "cnj_study.csv").string(), (dir / "cnj_study_jitter.csv").string(), dims, bases,
+               fmt::format("{} realizations from seed {}, {} lattice", result.config.seeds, result.config.seed,
+                           result.config.lattice == StudyLattice::interior ? "interior sites of the" : "the paper's Table 1")},
+              log);
   return md;
 }
 

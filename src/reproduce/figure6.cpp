@@ -17,6 +17,7 @@
 #include "dfvn/io/csv.hpp"
 #include "dfvn/io/png.hpp"
 #include "dfvn/noise/noise_domain.hpp"
+#include "dfvn/plot/gnuplot.hpp"
 #include "dfvn/reproduce/surface_figures.hpp"
 #include "dfvn/warp/image_warp.hpp"
 
@@ -66,6 +67,7 @@ Vec<3> sphere_point(int col, int row, int width, int height) {
 std::vector<double> figure6_stage_weights(const Figure6Config&) {
   std::vector<double> w;
   for (const Setting& s : settings()) w.push_back(s.steps * (s.projected ? 2.0 : 1.0));
+  for (std::size_t k = 0; k < std::size(Figure6Config::kTimeFractions); ++k) w.push_back(2.0 * Figure6Config::kTimeRowSteps);
   return w;
 }
 
@@ -86,30 +88,39 @@ Figure6Result run_figure6(const Figure6Config& config, const StageProgress& prog
       result.source.values[static_cast<std::size_t>(row) * w + col] = static_cast<float>(figure6_texture(p[0], p[1], p[2]));
     }
   const int threads = resolve_threads(config.threads);
-  for (const Setting& s : settings()) {
+  // Every pixel traced for `time` with `steps` RK4 steps, with or without projection: the texture where
+  // each trace ends, and each end's drift from the sphere.
+  const auto warp = [&](const std::string& label, int steps, bool projected, double time, FloatImage& image,
+                        std::vector<double>& drift, std::vector<TraceStats>& per_thread) {
     TraceOptions trace;
     trace.integrator = Integrator::rk4;
-    trace.steps = s.steps;
-    trace.reprojection = s.projected ? Reprojection::gauss_newton : Reprojection::none;
+    trace.steps = steps;
+    trace.reprojection = projected ? Reprojection::gauss_newton : Reprojection::none;
     const Tracer<3> tracer(field, trace);
-    FloatImage image{w, h, std::vector<float>(pixels)};
-    std::vector<double> drift(pixels);
-    std::vector<TraceStats> per_thread(static_cast<std::size_t>(threads));
+    image = FloatImage{w, h, std::vector<float>(pixels)};
+    drift.assign(pixels, 0.0);
+    per_thread.assign(static_cast<std::size_t>(threads), TraceStats{});
     std::atomic<int> rows_started{0};
-    Stopwatch watch;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
     for (int row = 0; row < h; ++row) {
       const int started = rows_started.fetch_add(1, std::memory_order_relaxed);
-      if (progress && omp_get_thread_num() == 0) progress(s.label, static_cast<double>(started) / h);
+      if (progress && omp_get_thread_num() == 0) progress(label, static_cast<double>(started) / h);
       TraceStats& stats = per_thread[static_cast<std::size_t>(omp_get_thread_num())];
       for (int col = 0; col < w; ++col) {
-        const Vec<3> q = tracer.trace(sphere_point(col, row, w, h), config.time, &stats);
+        const Vec<3> q = tracer.trace(sphere_point(col, row, w, h), time, &stats);
         const std::size_t i = static_cast<std::size_t>(row) * w + col;
         image.values[i] = static_cast<float>(figure6_texture(q[0], q[1], q[2]));
         drift[i] = std::abs(q.norm() - 1.0);
       }
     }
-    if (progress) progress(s.label, 1.0);
+    if (progress) progress(label, 1.0);
+  };
+  for (const Setting& s : settings()) {
+    FloatImage image;
+    std::vector<double> drift;
+    std::vector<TraceStats> per_thread;
+    Stopwatch watch;
+    warp(s.label, s.steps, s.projected, config.time, image, drift, per_thread);
     Figure6Row row;
     row.seconds = watch.seconds();
     row.label = s.label;
@@ -126,12 +137,37 @@ Figure6Result run_figure6(const Figure6Config& config, const StageProgress& prog
     result.images.push_back(std::move(image));
   }
   for (std::size_t r = 0; r < result.rows.size(); ++r) result.rows[r].rmse = rmse(result.images[r], result.images[0]);
+  for (double fraction : Figure6Config::kTimeFractions) {
+    const double t = fraction * config.time;
+    FloatImage image;
+    std::vector<double> drift;
+    std::vector<TraceStats> per_thread;
+    warp(fmt::format("t = {:g}", t), Figure6Config::kTimeRowSteps, true, t, image, drift, per_thread);
+    result.row_times.push_back(t);
+    result.time_images.push_back(std::move(image));
+  }
   return result;
 }
 
-std::vector<std::string> figure6_output_files() {
-  std::vector<std::string> files = {"figure6.csv", "figure6.md", "source.png"};
-  for (const Setting& s : settings()) files.push_back(s.label + ".png");
+double figure6_largest_error(const Figure6Result& result) {
+  double largest = 0.0;
+  for (std::size_t r = 1; r < result.images.size(); ++r)
+    for (std::size_t i = 0; i < result.images[r].values.size(); ++i)
+      largest = std::max(largest, static_cast<double>(std::abs(result.images[r].values[i] - result.images[0].values[i])));
+  return 255.0 * largest;  // the texture's values are in [0, 1]: 8-bit grey levels, as the RMSE
+}
+
+namespace {
+std::string time_file(double t) { return fmt::format("time-{:g}.png", t); }
+}  // namespace
+
+std::vector<std::string> figure6_output_files(const Figure6Config& config) {
+  std::vector<std::string> files = {"figure6.csv", "figure6.md", "source.png", "figure6.png"};
+  for (const Setting& s : settings()) {
+    files.push_back(s.label + ".png");
+    if (s.label != "reference") files.push_back("error-" + s.label + ".png");
+  }
+  for (double fraction : Figure6Config::kTimeFractions) files.push_back(time_file(fraction * config.time));
   return files;
 }
 
@@ -174,12 +210,21 @@ std::string figure6_markdown(const Figure6Result& result) {
       "- **Targets.** Projection lowers the RMSE at both step counts: {}. |x| stays 1 within 1e-12 with projection at "
       "both: {}. The reference itself (no projection) drifts by up to {}.\n",
       all_lower ? "yes" : "no", all_on_sphere ? "yes" : "no", format_real(result.rows[0].max_radius_drift, 3));
-  md += fmt::format("\nImages: `source.png` and `<setting>.png` (longitude across, latitude down). Seconds measured on {}.\n",
-                    result.machine);
+  md += fmt::format(
+      "\nImages (longitude across, latitude down): `source.png`, `<setting>.png`, `time-<t>.png` (the warp at t = {}, "
+      "{} projected RK4 steps) and `error-<setting>.png` (|warp - reference| on a log scale: white is the largest "
+      "error of any setting, {} grey levels, black {} decades below it); `figure6.png` puts them side by side. "
+      "Seconds measured on {}.\n",
+      [&] {
+        std::string times;
+        for (double t : result.row_times) times += (times.empty() ? "" : ", ") + format_real(t, 6);
+        return times;
+      }(),
+      Figure6Config::kTimeRowSteps, format_real(figure6_largest_error(result), 3), kFigure6ErrorDecades, result.machine);
   return md;
 }
 
-std::string write_figure6(const Figure6Result& result) {
+std::string write_figure6(const Figure6Result& result, const FigureLog& log) {
   const std::filesystem::path dir(result.config.out_dir);
   std::string csv = "setting,steps,projection,rmse,max_radius_drift,mean_radius_drift,field_evaluations,seconds\n";
   for (const Figure6Row& r : result.rows)
@@ -190,8 +235,31 @@ std::string write_figure6(const Figure6Result& result) {
   write_png((dir / "source.png").string(), to_gray(result.source));
   for (std::size_t r = 0; r < result.rows.size(); ++r)
     write_png((dir / (result.rows[r].label + ".png")).string(), to_gray(result.images[r]));
+  const double largest = figure6_largest_error(result);
+  std::string rmses;
+  for (std::size_t r = 1; r < result.rows.size(); ++r) {
+    FloatImage error = result.images[r];
+    for (std::size_t i = 0; i < error.values.size(); ++i) {
+      const double e = 255.0 * std::abs(result.images[r].values[i] - result.images[0].values[i]);
+      const double level = e > 0.0 && largest > 0.0 ? 1.0 + std::log10(e / largest) / kFigure6ErrorDecades : 0.0;
+      error.values[i] = static_cast<float>(std::clamp(level, 0.0, 1.0));
+    }
+    write_png((dir / ("error-" + result.rows[r].label + ".png")).string(), to_gray(error));
+    rmses += (rmses.empty() ? "" : " ") + format_real(result.rows[r].rmse, 3);
+  }
+  std::string times;
+  for (std::size_t k = 0; k < result.row_times.size(); ++k) {
+    write_png((dir / time_file(result.row_times[k])).string(), to_gray(result.time_images[k]));
+    times += (times.empty() ? "" : " ") + fmt::format("{:g}", result.row_times[k]);
+  }
   write_file_atomically((dir / "figure6.csv").string(), csv);
   write_file_atomically((dir / "figure6.md").string(), md);
+  const Figure6Config& c = result.config;
+  draw_figure(PlotProgram::figure6, (dir / "figure6.png").string(),
+              {dir.string(), std::to_string(c.width), std::to_string(c.height()), times, rmses, format_real(largest, 3),
+               fmt::format("{} noise, {} cycles per unit length, seed {}, {}x{} pixels", to_string(c.noise),
+                           format_real(c.frequency, 6), c.seed, c.width, c.height())},
+              log ? log : FigureLog([](const std::string&) {}));
   return md;
 }
 

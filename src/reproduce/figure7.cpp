@@ -17,6 +17,7 @@
 #include "dfvn/io/csv.hpp"
 #include "dfvn/io/png.hpp"
 #include "dfvn/noise/noise_domain.hpp"
+#include "dfvn/plot/gnuplot.hpp"
 #include "dfvn/reproduce/surface_figures.hpp"
 #include "dfvn/warp/image_warp.hpp"
 
@@ -121,7 +122,7 @@ Figure7Result run_figure7(const Figure7Config& config, const FractionProgress& p
 
 std::vector<std::string> figure7_output_files() {
   return {"figure7.csv", "figure7_profile.csv", "figure7.md", "source.png", "warped.png", "figure7_constructions_3d.csv",
-          "warped_paper.png", "slices_3d.png"};
+          "warped_paper.png", "slices_3d.png", "figure7.png"};
 }
 
 namespace {
@@ -218,7 +219,7 @@ std::string figure7_markdown(const Figure7Result& r) {
   return md;
 }
 
-std::string write_figure7(const Figure7Result& r) {
+std::string write_figure7(const Figure7Result& r, const FigureLog& log) {
   const std::filesystem::path dir(r.config.out_dir);
   std::string csv =
       "width,steps,samples_inside,left,share_left,max_end_radius_inside,mean_change_inside,samples_outside,"
@@ -259,6 +260,17 @@ std::string write_figure7(const Figure7Result& r) {
   write_file_atomically((dir / "figure7.csv").string(), csv);
   write_file_atomically((dir / "figure7_profile.csv").string(), profile);
   write_file_atomically((dir / "figure7.md").string(), md);
+  std::string left;  // the 2D traces that left the disc, eq13 then paper
+  for (const Figure7ConstructionRow& k : r.constructions)
+    if (k.dimension == 2) left += (left.empty() ? "" : " ") + std::to_string(k.left);
+  const Figure7Config& c = r.config;
+  draw_figure(PlotProgram::figure7, (dir / "figure7.png").string(),
+              {dir.string(), std::to_string(c.width), std::to_string(c.width3d),
+               fmt::format("t = {}, {} RK4 steps, {} noise at {} cycles per unit length, transition width {}, seed {}",
+                           format_real(c.time, 6), c.steps, to_string(c.noise), format_real(c.frequency, 6),
+                           format_real(c.transition_width, 6), c.seed),
+               left.empty() ? "0 0" : left},
+              log ? log : FigureLog([](const std::string&) {}));
   return md;
 }
 

@@ -18,6 +18,7 @@
 #include "dfvn/io/csv.hpp"
 #include "dfvn/io/png.hpp"
 #include "dfvn/noise/noise_domain.hpp"
+#include "dfvn/plot/gnuplot.hpp"
 #include "dfvn/reproduce/surface_figures.hpp"
 
 namespace dfvn {
@@ -140,7 +141,7 @@ Figure9Result run_figure9(const Figure9Config& config, const FractionProgress& p
 
 std::vector<std::string> figure9_output_files(const Figure9Config& config) {
   const std::string n = config.name();
-  return {n + ".csv", n + "_traces.csv", n + ".md", n + ".png"};
+  return {n + ".csv", n + "_traces.csv", n + ".md", n + "_traces.png", n + ".png"};
 }
 
 namespace {
@@ -263,13 +264,14 @@ std::string figure9_markdown(const Figure9Result& r) {
         format_real(c.bump_height, 4), format_real(c.bump_radius, 4), format_real(c.bump_height, 6),
         format_real(c.bump_radius, 6), format_real(c.slope_x, 6), format_real(c.slope_y, 6), r.centre_particles,
         format_real(r.centre_turns, 3));
-  md += fmt::format("\nFiles: `{}.csv` (these numbers), `{}_traces.csv` (every trace point), `{}.png` (the traces over the "
-                    "height field, lighter = lower; y up). Seconds measured on {}.\n",
-                    n, n, n, r.machine);
+  md += fmt::format("\nFiles: `{}.csv` (these numbers), `{}_traces.csv` (every trace point), `{}_traces.png` (the traces "
+                    "over the height field, lighter = lower; y up) and, with gnuplot, `{}.png` (the same with axes, the "
+                    "slope direction, the mean drift and the spread's principal direction). Seconds measured on {}.\n",
+                    n, n, n, n, r.machine);
   return md;
 }
 
-std::string write_figure9(const Figure9Result& r) {
+std::string write_figure9(const Figure9Result& r, const FigureLog& log) {
   const Figure9Config& c = r.config;
   const std::filesystem::path dir(c.out_dir);
   const std::string n = c.name();
@@ -292,10 +294,30 @@ std::string write_figure9(const Figure9Result& r) {
       traces += fmt::format("{},{},{},{}\n", p, j, format_real(t[0]), format_real(t[1]));
     }
   const std::string md = figure9_markdown(r);
-  write_png((dir / (n + ".png")).string(), draw_traces(r));
+  write_png((dir / (n + "_traces.png")).string(), draw_traces(r));
   write_file_atomically((dir / (n + ".csv")).string(), csv);
   write_file_atomically((dir / (n + "_traces.csv")).string(), traces);
   write_file_atomically((dir / (n + ".md")).string(), md);
+  const std::string surface =
+      c.bump_height != 0.0 ? fmt::format("h = {} x + {} y with a hill of height {} and radius {} in the middle (background: h, "
+                                         "lighter = lower)",
+                                         format_real(c.slope_x, 6), format_real(c.slope_y, 6),
+                                         format_real(c.bump_height, 6), format_real(c.bump_radius, 6))
+                           : fmt::format("the plane h = {} x + {} y (background: h, lighter = lower)",
+                                         format_real(c.slope_x, 6), format_real(c.slope_y, 6));
+  draw_figure(PlotProgram::slope, (dir / (n + ".png")).string(),
+              {(dir / (n + "_traces.png")).string(),
+               fmt::format("{}: {}x{} particles traced over {}\n{}", c.ramp_figure ? "Figure 9" : "Figure 10", c.grid,
+                           c.grid, c.ramp_figure ? fmt::format("a slope with the vertical ramp {}", format_real(c.ramp, 6))
+                                                 : std::string("a slope, without the vertical ramp"),
+                           surface),
+               fmt::format("{} {}", format_real(c.slope_x, 9), format_real(c.slope_y, 9)),
+               fmt::format("{} {}", format_real(r.mean_dx, 9), format_real(r.mean_dy, 9)),
+               format_real(r.principal_angle, 9),
+               fmt::format("t = {}, {} RK4 steps + reprojection, {} noise at {} cycles per unit length, seed {}",
+                           format_real(c.time, 6), c.steps, to_string(c.noise), format_real(c.frequency, 6), c.seed),
+               std::to_string(c.image)},
+              log ? log : FigureLog([](const std::string&) {}));
   return md;
 }
 

@@ -67,8 +67,8 @@ struct Table1Result {
 Table1Result run_table1(const Table1Config& config, const StageProgress& progress = {});
 std::vector<double> table1_stage_weights(const Table1Config& config);
 
-// DIR/table1.csv (one row per realization, column and dimension, stat = value; then the mean and sd rows
-// of experiment/realizations.hpp), DIR/rdf.csv
+// DIR/table1.csv (one row per realization, column and dimension), DIR/table1_summary.csv (their mean,
+// sd and standard error, experiment/realizations.hpp), DIR/rdf.csv
 // (the first realization), DIR/table1.md; then DIR/figure4.png (scripts/figure4.gp) when gnuplot is
 // installed (otherwise `log` says how to get it). Returns the Markdown; throws PlotError when gnuplot
 // fails.

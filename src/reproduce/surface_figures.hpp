@@ -29,7 +29,7 @@ using FigureLog = std::function<void(const std::string&)>;
 // ---- Figure 6: a texture warped on the unit sphere (Section 5.3) ----
 
 struct Figure6Config {
-  int width = 96;             // the equirectangular map's width in pixels; its height is width / 2
+  int width = 512;            // the equirectangular map's width in pixels; its height is width / 2
   double time = 0.5;          // integration time (RMS |c| = 1: about 0.5 unit lengths travelled)
   double frequency = 1.5;     // cycles per unit length
   NoiseBasis noise = kDefaultNoiseBasis;
@@ -38,6 +38,10 @@ struct Figure6Config {
   std::string out_dir = "out/figure6";
   static constexpr int kReferenceSteps = 2048;            // RK4, no projection (as Table 2's reference)
   static constexpr int kSteps[2] = {32, 128};              // the compared settings, each with and without projection
+  // The row of increasing t (as the paper's figure): the warp at these fractions of `time`, each with
+  // kTimeRowSteps RK4 steps and projection.
+  static constexpr double kTimeFractions[3] = {0.25, 0.5, 1.0};
+  static constexpr int kTimeRowSteps = 128;
 
   int height() const { return width / 2; }
   void validate() const;  // throws std::invalid_argument naming the option
@@ -59,6 +63,8 @@ struct Figure6Result {
   std::vector<Figure6Row> rows;        // the reference first, then 32, 32 projected, 128, 128 projected
   std::vector<FloatImage> images;      // per row
   FloatImage source;
+  std::vector<double> row_times;       // kTimeFractions x time
+  std::vector<FloatImage> time_images; // the warp at each of row_times (projected)
   std::string machine;
 };
 
@@ -66,9 +72,16 @@ struct Figure6Result {
 double figure6_texture(double x, double y, double z);
 Figure6Result run_figure6(const Figure6Config& config, const StageProgress& progress = {});
 std::vector<double> figure6_stage_weights(const Figure6Config& config);
-// DIR/figure6.csv, DIR/figure6.md, DIR/source.png and DIR/<label>.png per row. Returns the Markdown.
-std::string write_figure6(const Figure6Result& result);
-std::vector<std::string> figure6_output_files();
+// DIR/figure6.csv, DIR/figure6.md, DIR/source.png, DIR/<label>.png per row, DIR/time-<t>.png per time of
+// the row, DIR/error-<label>.png per compared setting (|warp - reference| on one log scale for all: the
+// largest error of any setting white, kFigure6ErrorDecades decades below it black) and, with gnuplot,
+// DIR/figure6.png: the titled montage (scripts/figure6.gp). Returns the Markdown; `log` says how to get the
+// montage without gnuplot.
+std::string write_figure6(const Figure6Result& result, const FigureLog& log = {});
+// The largest pixel error |warp - reference| of any compared setting, in 8-bit grey levels.
+double figure6_largest_error(const Figure6Result& result);
+inline constexpr int kFigure6ErrorDecades = 5;
+std::vector<std::string> figure6_output_files(const Figure6Config& config);
 std::string figure6_markdown(const Figure6Result& result);
 
 // ---- Figure 7: DFVN confined to a disc (Section 5.4) ----
@@ -135,7 +148,7 @@ void run_figure7_constructions(const Figure7Config& config, Figure7Result& resul
 // constructions and the 3D half: DIR/figure7_constructions_3d.csv (a row per dimension and construction),
 // DIR/warped_paper.png (2D, the paper's construction) and DIR/slices_3d.png (rows: source, eq13, paper; columns:
 // the central slices z, y, x = 1/2 of the unit cube, the ball's sphere their largest circle).
-std::string write_figure7(const Figure7Result& result);
+std::string write_figure7(const Figure7Result& result, const FigureLog& log = {});
 std::vector<std::string> figure7_output_files();
 std::string figure7_markdown(const Figure7Result& result);
 
@@ -187,7 +200,7 @@ struct Figure9Result {
 
 Figure9Result run_figure9(const Figure9Config& config, const FractionProgress& progress = {});
 // DIR/<name>.csv (one row), DIR/<name>_traces.csv, DIR/<name>.md, DIR/<name>.png.
-std::string write_figure9(const Figure9Result& result);
+std::string write_figure9(const Figure9Result& result, const FigureLog& log = {});
 std::vector<std::string> figure9_output_files(const Figure9Config& config);
 std::string figure9_markdown(const Figure9Result& result);
 

@@ -207,13 +207,15 @@ void draw_figure4(const Table1Result& result, const std::string& dir, const Log&
 
 }  // namespace
 
-std::vector<std::string> table1_output_files() { return {"table1.csv", "rdf.csv", "table1.md", "figure4.png"}; }
+std::vector<std::string> table1_output_files() {
+  return {"table1.csv", "table1_summary.csv", "rdf.csv", "table1.md", "figure4.png"};
+}
 
 std::string write_table1(const Table1Config& config, const Table1Result& result, const Log& log) {
   const std::string dir = config.out_dir;
   const std::string header = "table1_column," + stats_csv_header();
   std::string stats = header, rdf = rdf_csv_header();
-  std::vector<std::string> rows;  // without newlines, for the mean and sd rows
+  std::vector<std::string> rows;  // without newlines, for the summary
   const auto add = [&](const SampleConfig& c, const MethodResult& r, bool simplex) {
     rows.push_back("\"" + table1_column(r.plan.method, simplex) + "\"," + stats_csv_row(c, r));
     stats += rows.back();
@@ -228,10 +230,11 @@ std::string write_table1(const Table1Config& config, const Table1Result& result,
     }
     for (const auto& m : result.first(d)) rdf += rdf_csv_rows(result.configs[d], m);
   }
-  if (result.realizations > 1)
-    stats += realization_summary_rows(header.substr(0, header.size() - 1), rows, {"table1_column", "dim", "grid", "method"}, "seed");
+  const std::string summary =
+      realization_summary_csv(header.substr(0, header.size() - 1), rows, {"table1_column", "dim", "grid", "method"}, "seed");
   const std::string md = table1_markdown(result);
-  for (const auto& [name, text] : {std::pair{"table1.csv", stats}, {"rdf.csv", rdf}, {"table1.md", md}})
+  for (const auto& [name, text] :
+       {std::pair{"table1.csv", stats}, {"table1_summary.csv", summary}, {"rdf.csv", rdf}, {"table1.md", md}})
     write_file_atomically((std::filesystem::path(dir) / name).string(), text);
   draw_figure4(result, dir, log);
   return md;

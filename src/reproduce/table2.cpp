@@ -371,8 +371,13 @@ std::string write_table2(const std::string& out_dir, const Table2Result& r, cons
         const Table2Row* row = find_row(r, integrator, steps, newton);
         rmse_texts += (row ? format_rmse(row->rmse) : std::string("-")) + " ";
       }
+  const WarpConfig& w = r.config.warp;
   draw_figure(PlotProgram::figure5, path("figure5.png"),
-              {out_dir, std::to_string(r.config.warp.width), std::to_string(r.config.warp.height), times, rmse_texts}, log);
+              {out_dir, std::to_string(w.width), std::to_string(w.height), times, rmse_texts,
+               fmt::format("{} noise, {} cycles per width, RMS speed {}, t = {}, seed {}, {}x{} pixels", to_string(w.noise),
+                           format_real(w.frequency, 4), format_real(w.field_magnitude, 4), format_real(w.time, 4), w.seed,
+                           w.width, w.height)},
+              log);
   return md;
 }
 

@@ -114,25 +114,23 @@ std::vector<double> point_statistics_stage_weights(const PointSetStatisticsOptio
 
 std::string point_statistics_csv_header() {
   std::string header =
-      "input,set,dim,points,nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,median_displacement,"
-      "frac_unmoved,neighbour_disorder,lattice_order,seconds_stats,domain,domain_side";
+      "input,set,dim,points,nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,seconds_stats,domain,domain_side";
   for (DiscrepancyKind kind : kAllDiscrepancies) header += "," + std::string(csv_column(kind));
-  return header + ",stat\n";
+  return header + "\n";
 }
 
 std::string point_statistics_csv_row(std::string_view input, std::string_view set, const PointSet& points,
                                      const PointSetStatistics& s, bool timing) {
-  // The five displacement columns stay empty: there are no lattice sites.
-  std::string row = fmt::format("{},{},{},{},{},{},{},{},{},,,,,,{},{},{}", csv_quoted(input), set, points.dimension,
+  std::string row = fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}", csv_quoted(input), set, points.dimension,
                                 s.nearest.points, format_real(s.nearest.min), format_real(s.nearest.q01),
                                 format_real(s.nearest.median), format_real(s.nearest.mean),
                                 format_real(s.nearest.median_scaled), timing ? fmt::format("{:.6f}", s.seconds) : std::string(),
                                 to_string(points.domain.kind), format_real(points.domain.side));
   for (const auto& value : s.discrepancies) {
     row += ',';
-    if (value) row += format_real(*value, 17);
+    if (value) row += format_real(*value);  // statistics to 9 significant digits, as every other
   }
-  return row + ",value\n";
+  return row + "\n";
 }
 
 }  // namespace dfvn

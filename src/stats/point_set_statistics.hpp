@@ -60,12 +60,11 @@ inline constexpr double kRdfCostOverStatistics = 4.0;
 std::vector<double> point_statistics_stage_weights(const PointSetStatisticsOptions& options, std::size_t points,
                                                    int dimension);
 
-// CSV of `dfvn-sample stats`: input,set,dim,points, the nearest-neighbour and displacement columns of the
-// sampling stats (nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,median_displacement,
-// frac_unmoved,neighbour_disorder,lattice_order), seconds_stats,domain_side,cd,wd,md,l2_star,stat (the
-// word "value": one set; experiment/realizations.hpp adds "mean" and "sd" rows). The displacement
-// columns are empty (a file's points have no lattice sites to move from), the discrepancy columns
-// unless computed, seconds_stats with `timing` off. Reals as io/csv.hpp's format_real writes them.
+// CSV of `dfvn-sample stats`: input,set,dim,points, the nearest-neighbour columns of the sampling stats
+// (nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled), seconds_stats,domain,domain_side,cd,wd,md,l2_star:
+// one row per set, data rows only (experiment/realizations.hpp's realization_summary_csv summarises the
+// sets of a file for --summary). The discrepancy columns are empty unless computed, seconds_stats with
+// `timing` off. Reals as io/csv.hpp's format_real writes them (9 significant digits), times to 6 decimals.
 std::string point_statistics_csv_header();
 std::string point_statistics_csv_row(std::string_view input, std::string_view set, const PointSet& points,
                                      const PointSetStatistics& statistics, bool timing = true);

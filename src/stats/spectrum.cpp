@@ -136,7 +136,7 @@ PowerSpectrum power_spectrum(const std::vector<PointSet>& sets, int max_frequenc
 std::vector<std::string> spectrum_file_suffixes() { return {".csv", "_radial.csv", ".png"}; }
 
 void write_spectrum_files(const std::string& prefix, const PowerSpectrum& spectrum,
-                          const std::function<void(const std::string&)>& log) {
+                          const std::function<void(const std::string&)>& log, const std::string& what) {
   const int side = 2 * spectrum.max_frequency + 1;
   std::string grid = numbered_header("k", spectrum.dimension) + ",power\n";
   for (std::size_t index = 0; index < spectrum.power.size(); ++index) {
@@ -150,13 +150,13 @@ void write_spectrum_files(const std::string& prefix, const PowerSpectrum& spectr
   std::string radial = "frequency,power,anisotropy_db,frequencies\n";
   for (std::size_t r = 1; r < spectrum.radial_mean.size(); ++r)
     fmt::format_to(std::back_inserter(radial), "{},{},{},{}\n", r, format_real(spectrum.radial_mean[r]),
-                   spectrum.anisotropy_db[r] ? format_real(*spectrum.anisotropy_db[r], 6) : std::string(),
+                   spectrum.anisotropy_db[r] ? format_real(*spectrum.anisotropy_db[r]) : std::string(),
                    spectrum.shell_counts[r]);
   write_file_atomically(prefix + ".csv", grid);
   write_file_atomically(prefix + "_radial.csv", radial);
   draw_figure(PlotProgram::spectrum, prefix + ".png",
               {prefix + ".csv", prefix + "_radial.csv", std::to_string(spectrum.dimension),
-               fmt::format("{:.6g}", spectrum.lattice_peak)},
+               fmt::format("{:.6g}", spectrum.lattice_peak), what},
               log);
 }
 

@@ -56,10 +56,11 @@ double expected_spectrum_cost(const std::vector<PointSet>& sets, int max_frequen
 inline constexpr int kMaxDefaultFrequency2d = 256, kMaxDefaultFrequency3d = 64;
 
 // PREFIX.csv: k0,..,k{N-1},power for every frequency; PREFIX_radial.csv: frequency,power,anisotropy_db,
-// frequencies (the shell's count), anisotropy_db empty where it is not defined. Then PREFIX.png (scripts/spectrum.gp, src/plot/gnuplot.hpp) when gnuplot is
+// frequencies (the shell's count), anisotropy_db empty where it is not defined. Then PREFIX.png (scripts/spectrum.gp, plot/gnuplot.hpp) when gnuplot is
 // installed (otherwise `log` says how to get it). Throws PlotError if gnuplot fails.
+// `what` names the points in the figure's title ("'pts.npy', 4 sets of 1024 points").
 void write_spectrum_files(const std::string& prefix, const PowerSpectrum& spectrum,
-                          const std::function<void(const std::string&)>& log);
+                          const std::function<void(const std::string&)>& log, const std::string& what = "the points");
 // What write_spectrum_files appends to the prefix: ".csv", "_radial.csv", ".png".
 std::vector<std::string> spectrum_file_suffixes();
 

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Prints a file of tests/cli/test_cli_reference.sh with its times blanked, the one thing allowed to differ
 between two runs of the same command (the reproductions have no --no-timing):
-- CSV (and field --diagnose's row): the columns named seconds* and megapixels_per_second emptied;
+- CSV (and field --diagnose's row): the columns named seconds* and megapixels_per_second emptied; in a
+  summary (header ...,statistic,realizations,mean,sd,standard_error) the numbers of a seconds* statistic;
 - table1 and table2's Markdown and plain text, which put times in most rows: every number as '#' and runs of spaces (and of dashes) as
   one (the plain text aligns its columns to the numbers' widths), so the words and the rows are compared (table1.csv and table2.csv hold their numbers, compared above);
   a verdict on a claim about time ("... and in time (# s vs # s): holds at #") depends on the machine's load, so it is '<verdict>';
@@ -40,7 +41,19 @@ def main():
     path = sys.argv[1].removeprefix("./")
     data = open(path, "rb").read()
     name = path.rsplit("/", 1)[-1]
-    if path.endswith(".csv") or name == "field_diagnose.stdout":
+    if path.endswith(".csv") and data.decode().split("\n", 1)[0].endswith(",statistic,realizations,mean,sd,standard_error"):
+        # A summary (--summary, table1_summary.csv): the rows of a time column get their numbers blanked.
+        import csv
+        import io
+        rows = list(csv.reader(io.StringIO(data.decode())))
+        statistic = rows[0].index("statistic")
+        for row in rows[1:]:
+            if len(row) > statistic and TIME_COLUMN.match(row[statistic]):
+                row[-3:] = ["", "", ""]
+        out = io.StringIO()
+        csv.writer(out, lineterminator="\n").writerows(rows)
+        sys.stdout.write(out.getvalue())
+    elif path.endswith(".csv") or name == "field_diagnose.stdout":
         lines = data.decode().split("\n")
         header = lines[0].split(",")
         blank = [i for i, column in enumerate(header) if TIME_COLUMN.match(column)]

@@ -3,7 +3,7 @@
 # integers, all reals with a decimal point or an exponent, or all words; empty cells allowed), across
 # its rows and across runs of the same output (check_csv_types.py says how a cell's type is read).
 # Each command runs in a quick setting chosen to reach the rows where a type could slip: several
-# methods and --realizations (summary rows), a dat file of several sets (summary rows), an RDF with
+# methods and --realizations (with --summary), a dat file of several sets (with --summary), an RDF with
 # empty bins (g = 0), a field frequency of 1, every reproduce subcommand.
 set -u
 source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
@@ -13,6 +13,7 @@ bin="$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")"  # the commands below 
 cd "$work" || exit 1
 
 # The checker itself: a real column written "1" beside "0.5", or a word in a column of integers, fails.
+# (Every table also holds data rows only: no row of a CSV is a summary of its other rows.)
 printf 'seed,g\n1,0.5\n2,1\n' >bad_real.csv
 printf 'seed,g\n1,0.5\nmean,0.5\n' >bad_word.csv
 printf 'method,g,n\ncnj,0.5,\nsobol,1e-07,3\n,nan,\n' >good.csv
@@ -33,7 +34,7 @@ run() {
 run all -d 2 --grid 8 --methods cnj,jitter-matched,jitter,pds,sobol,random,halton,lhs --scramble none \
   -o all.csv --rdf all_rdf.csv --rdf-bins 40 --points pts -q
 run count -d 3 -n 100 --methods pds,sobol,halton,lhs,random --domain cube --no-timing -o count.csv -q
-run realizations -d 3 --grid 5 --methods cnj,jitter,pds,sobol --realizations 3 --no-timing -q
+run realizations -d 3 --grid 5 --methods cnj,jitter,pds,sobol --realizations 3 --summary realizations_summary.csv -q
 run sphere --dim 3 --grid 6 --on sphere --no-timing -o sphere.csv -q
 run ball --dim 3 --grid 6 --domain ball --bound ramp --methods cnj,jitter --no-timing -o ball.csv -q
 run torus --dim 2 --grid 6 --domain torus --methods cnj,jitter --periodic --no-timing -o torus.csv -q
@@ -41,7 +42,7 @@ run torus --dim 2 --grid 6 --domain torus --methods cnj,jitter --periodic --no-t
 run stats stats --input pts/cnj.csv --discrepancy -o stats.csv -q
 "$bin" -d 2 --grid 6 --methods jitter --no-stats --points - --format dat -q -s 1 >sets.dat
 for s in 2 3; do echo "#" >>sets.dat && "$bin" -d 2 --grid 6 --methods jitter --no-stats --points - --format dat -q -s $s >>sets.dat; done
-run stats_sets stats --input sets.dat --discrepancy --no-timing -o stats_sets.csv -q
+run stats_sets stats --input sets.dat --discrepancy --no-timing -o stats_sets.csv --summary stats_sets_summary.csv -q
 awk '!/^#/ {print 2 * $1, 2 * $2; next} {print}' sets.dat >sets2.dat
 run stats_side stats --input sets2.dat --format dat --domain-side 2 --periodic -o stats_side.csv -q
 run stats_spectrum stats --input pts/sobol.csv --spectrum spectrum --spectrum-frequency 5 -o stats_spectrum.csv -q
@@ -67,9 +68,9 @@ run animate_drop animate --dim 3 --grid 3 --lattice bcc --frames 30 --domain-mod
 
 mv realizations.stdout realizations.csv  # the statistics went to standard output
 # Every CSV written must have been found: each command above writes at least the files named here.
-for f in all.csv all_rdf.csv pts/cnj.csv pts/lhs.csv count.csv realizations.csv sphere.csv ball.csv \
-  torus.csv stats.csv stats_sets.csv stats_side.csv stats_spectrum.csv spectrum.csv spectrum_radial.csv field.csv \
-  field_cube.csv diagnose1.csv diagnose2.csv r1/table1.csv r1/rdf.csv r2/table2.csv r2/timeline.csv \
+for f in all.csv all_rdf.csv pts/cnj.csv pts/lhs.csv count.csv realizations.csv realizations_summary.csv sphere.csv \
+  ball.csv torus.csv stats.csv stats_sets.csv stats_sets_summary.csv stats_side.csv stats_spectrum.csv spectrum.csv spectrum_radial.csv field.csv \
+  field_cube.csv diagnose1.csv diagnose2.csv r1/table1.csv r1/table1_summary.csv r1/rdf.csv r2/table2.csv r2/timeline.csv \
   r3/cnj_study.csv r3/cnj_study_jitter.csv r4/integration.csv r4/integration_slopes.csv r5/figure8_frames.csv \
   r5/figure8_tracks.csv rc/constructions.csv rc/curl_obstacle.csv r6/figure6.csv r7/figure7.csv r7/figure7_profile.csv r7/figure7_constructions_3d.csv r10/figure10.csv r10/figure10_traces.csv \
   rb/bridson_checks.csv rb/bridson_octaves.csv rb/wake_traces.csv rb/ring_traces.csv \

@@ -255,7 +255,7 @@ fi
 expect_error "dims overflow" "" "" reproduce table1 --dims 99999999999 --out "$work/r1bad"
 expect_message "dims overflow" "--dims: '99999999999' is not a dimension in 3\.\.7"
 expect_error "unknown reproduce subcommand" "" "" reproduce table3
-expect_message "unknown reproduce subcommand" "table1 or table2 or cnj-study or integration or figure8 or constructions or figure6 or figure7 or figure9 or figure10 or bridson, got 'table3'"
+expect_message "unknown reproduce subcommand" "unknown reproduce subcommand 'table3'; did you mean table1 or table2\\?"
 expect_error "missing reproduce subcommand" "" "" reproduce
 expect_message "missing reproduce subcommand" "table1 or table2"
 expect_error "unknown options in order" "" "" --dim 3 --bogus1 --bogus2 third

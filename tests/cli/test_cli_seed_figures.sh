@@ -15,7 +15,10 @@ csv_column() { /usr/bin/python3 -c 'import csv,sys; print("\n".join(r[sys.argv[2
 for f in bridson.md bridson_checks.csv bridson_octaves.csv wake_traces.csv ring_traces.csv; do
   [[ -s b/$f ]] && ok || bad "bridson wrote no $f"
 done
-for f in wake ring; do is_png "b/$f.png" && ok || bad "bridson wrote no $f.png"; done
+for f in wake_traces ring_traces; do is_png "b/$f.png" && ok || bad "bridson wrote no $f.png"; done
+if command -v gnuplot >/dev/null; then
+  for f in wake ring; do is_png "b/$f.png" && ok || bad "bridson wrote no titled $f.png"; done
+fi
 [[ $(csv_column b/bridson_checks.csv passed | sort -u) == 1 ]] && ok || bad "bridson: a check failed: $(grep ',0$' b/bridson_checks.csv)"
 [[ $(grep -c . b/bridson_checks.csv) -ge 14 ]] && ok || bad "bridson_checks.csv: fewer checks than expected"
 grep -q -- "--octave-gain 0.5 --boundary-width 0.06 --grid 8 --trace-steps 48" b/bridson.md && ok || bad "bridson.md does not quote the run"

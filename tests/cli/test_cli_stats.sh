@@ -4,8 +4,8 @@
 set -u
 source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
-# The sampling stats' nearest-neighbour and displacement columns (issue 11), the displacement ones empty.
-header="input,set,dim,points,nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,rms_displacement,median_displacement,frac_unmoved,neighbour_disorder,lattice_order,seconds_stats,domain,domain_side,cd,wd,md,l2_star,stat"
+# The sampling stats' nearest-neighbour columns; a file's points have no lattice, so no displacement columns.
+header="input,set,dim,points,nn_min,nn_q01,nn_median,nn_mean,nn_median_scaled,seconds_stats,domain,domain_side,cd,wd,md,l2_star"
 
 # The same Sobol set as CSV and NPY gives the same statistics.
 "$bin" --dim 3 --grid 5 --methods sobol,jitter --domain cube --points "$work/p" --format npy --quiet >/dev/null || bad "sample npy"
@@ -15,24 +15,27 @@ for f in sobol.npy sobol.csv; do
   head -1 "$work/$f.stats" | grep -qx "$header" && ok || bad "stats $f header: $(head -1 "$work/$f.stats")"
   [[ $(wc -l <"$work/$f.stats") -eq 2 ]] && ok || bad "stats $f: one row"
 done
-cut -d, -f3-14,16-20 "$work/sobol.npy.stats" >"$work/a"
-cut -d, -f3-14,16-20 "$work/sobol.csv.stats" >"$work/b"
+cut -d, -f3-9,11-16 "$work/sobol.npy.stats" >"$work/a"
+cut -d, -f3-9,11-16 "$work/sobol.csv.stats" >"$work/b"
 cmp -s "$work/a" "$work/b" && ok || bad "csv and npy statistics differ"
 # Without --discrepancy the columns are empty.
-"$bin" stats --input "$work/p/jitter.csv" | tail -1 | grep -q ",1.0,,,,,value$" && ok || bad "discrepancy columns not empty"
+"$bin" stats --input "$work/p/jitter.csv" | tail -1 | grep -q ",1.0,,,,$" && ok || bad "discrepancy columns not empty"
 # nn_q01 is filled, the displacement columns are empty (a file's points have no lattice sites).
-"$bin" stats --input "$work/p/jitter.csv" | tail -1 | awk -F, '{ exit !($6 != "" && $10 $11 $12 $13 $14 == "") }' && ok ||
-  bad "stats --input nn_q01 / displacement columns"
-# A headerless CSV in 1D and a dat file of two 2D sets (mean and sd rows: set empty, stat = mean, sd).
+"$bin" stats --input "$work/p/jitter.csv" | tail -1 | awk -F, '{ exit !($6 != "" && NF == 16) }' && ok ||
+  bad "stats --input nn_q01 / 16 columns"
+# A headerless CSV in 1D and a dat file of two 2D sets (a row a set; --summary: mean, sd, standard error).
 printf '0.1\n0.4\n0.9\n' >"$work/one.csv"
 "$bin" stats --input "$work/one.csv" | tail -1 | cut -d, -f3-5 | grep -qx "1,3,0.3" && ok || bad "1D csv"
 printf '# set 0\n0.1 0.2\n0.3 0.4\n0.8 0.1\n#\n0.5 0.5\n0.2 0.9\n' >"$work/two.dat"
-"$bin" stats --input "$work/two.dat" --discrepancy >"$work/dat.stats" 2>"$work/err" && ok || bad "stats dat: $(cat "$work/err")"
-[[ $(awk -F, '{ print $2 "/" $NF }' "$work/dat.stats" | tr '\n' ' ') == "set/stat 0/value 1/value /mean /sd " ]] && ok ||
-  bad "dat rows: $(cat "$work/dat.stats")"
+"$bin" stats --input "$work/two.dat" --discrepancy --summary "$work/dat.summary" >"$work/dat.stats" 2>"$work/err" && ok ||
+  bad "stats dat: $(cat "$work/err")"
+[[ $(cut -d, -f2 "$work/dat.stats" | tr '\n' ' ') == "set 0 1 " ]] && ok || bad "dat rows: $(cat "$work/dat.stats")"
+head -1 "$work/dat.summary" | grep -qx "input,dim,statistic,realizations,mean,sd,standard_error" &&
+  grep -q '^"[^"]*two.dat",2,nn_min,2,' "$work/dat.summary" && grep -q ',cd,2,' "$work/dat.summary" && ok ||
+  bad "dat summary: $(cat "$work/dat.summary")"
 # Output does not depend on --threads (apart from the timing column).
-"$bin" stats --input "$work/p/sobol.npy" --discrepancy --threads 1 | cut -d, -f1-14,16- >"$work/t1"
-"$bin" stats --input "$work/p/sobol.npy" --discrepancy --threads 2 | cut -d, -f1-14,16- >"$work/t2"
+"$bin" stats --input "$work/p/sobol.npy" --discrepancy --threads 1 | cut -d, -f1-9,11- >"$work/t1"
+"$bin" stats --input "$work/p/sobol.npy" --discrepancy --threads 2 | cut -d, -f1-9,11- >"$work/t2"
 cmp -s "$work/t1" "$work/t2" && ok || bad "stats depend on --threads"
 
 # Bad files: one line naming the line, dtype or shape; no output file.
@@ -56,12 +59,18 @@ expect_error "text named .bin" "" "two.bin, bin: .* not UTK .bin records" stats 
 expect_error "missing file" "" "" stats --input "$work/none.csv"
 expect_error "no input" "" "input" stats
 
-# sample --realizations: R rows per method (stat = value), then its mean and sd (seed empty).
-"$bin" --dim 3 --grid 4 --methods jitter,sobol --realizations 3 --seed 5 --quiet >"$work/r.csv" 2>"$work/err" && ok || bad "realizations: $(cat "$work/err")"
+# sample --realizations: R data rows per method and nothing else; --summary has their mean, sd and
+# standard error, a row per method and statistic that varies (not the constant settings).
+"$bin" --dim 3 --grid 4 --methods jitter,sobol --realizations 3 --seed 5 --quiet --summary "$work/r_summary.csv" \
+  >"$work/r.csv" 2>"$work/err" && ok || bad "realizations: $(cat "$work/err")"
 seed_column=$(head -1 "$work/r.csv" | tr ',' '\n' | grep -nx seed | cut -d: -f1)
-rows=$(awk -F, -v s="$seed_column" 'NR > 1 { print $3 "," $s "," $NF }' "$work/r.csv" | tr '\n' ' ')
-[[ $rows == "jitter,5,value sobol,5,value jitter,6,value sobol,6,value jitter,7,value sobol,7,value jitter,,mean jitter,,sd sobol,,mean sobol,,sd " ]] \
-  && ok || bad "realization rows: $rows"
+rows=$(awk -F, -v s="$seed_column" 'NR > 1 { print $3 "," $s }' "$work/r.csv" | tr '\n' ' ')
+[[ $rows == "jitter,5 sobol,5 jitter,6 sobol,6 jitter,7 sobol,7 " ]] && ok || bad "realization rows: $rows"
+grep -q "^3,4,jitter,nn_min,3," "$work/r_summary.csv" && grep -q "^3,4,sobol,nn_median_scaled,3," "$work/r_summary.csv" &&
+  ! grep -Eq ",(domain_side|half_width|requested|points)," "$work/r_summary.csv" && ok ||
+  bad "realization summary: $(head -5 "$work/r_summary.csv")"
+expect_error "summary of one" "" "--summary summarises the sets of --realizations R: give R >= 2" \
+  --dim 3 --grid 4 --summary "$work/one_summary.csv"
 expect_error "sets in csv" "" "--points writes the 2 sets of --sets into one file: --format dat, npy or bin" \
   --dim 3 --grid 4 --realizations 2 --points "$work/rp"
 expect_error "realizations and rdf" "" "--rdf takes one realization" --dim 3 --grid 4 -m 2 --rdf "$work/rp.csv"

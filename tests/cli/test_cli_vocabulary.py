@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 24's one vocabulary: every option name means one thing across subcommands.
+"""One vocabulary: every option name means one thing across subcommands.
 
 Reads `dfvn-sample --help-all`, finds every option name that more than one subcommand takes and
 checks that each of its descriptions states the meaning and unit the table SHARED gives (phrases
@@ -20,7 +20,7 @@ import tempfile
 BIN = os.environ["DFVN_SAMPLE"]
 SOURCE = os.environ.get("DFVN_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
 
-# name -> the phrases every description of it must hold (README's table "Options that mean the same
+# name -> the phrases every description of it must hold (docs/CLI.md's table "Options that mean the same
 # everywhere" says the same in words). Names taken by one subcommand today but meant to be shared are
 # listed too, so that they keep one meaning when a second subcommand takes them.
 SHARED = {
@@ -36,6 +36,7 @@ SHARED = {
     "--input": ["point file to read"],
     "--format": ["point file format", "csv", "npy", "dat"],
     "--json": ["also write the", "as json", "('-' = standard output)"],
+    "--summary": ["also write the summary over", "the mean, sd and standard error", "('-' = standard output)"],
     "--no-timing": ["leave the seconds column", "empty"],
     "--knn": ["kd-tree backend: nanoflann or flann"],
     "--periodic": ["on the torus", "minimum-image"],
@@ -51,7 +52,7 @@ SHARED = {
     "--lift-ramp": ["the vertical ramp of the paper's figure 9"],
     "--steer-dir": ["with --noise steerable: the direction u the noise is elongated along"],
     "--steer-field": ["with --noise steerable: constant (--steer-dir) or circular"],
-    "--steer-quality": ["with --noise steerable: seed 002's quality q in 0..n"],
+    "--steer-quality": ["with --noise steerable: the quality q in 0..n"],
     "--steer-image": ["with --noise steerable in 2d: steer along an image's direction field"],
     "--steer-k": ["with --noise steerable: the metric's eigenvalue k along u, in (0, 1]"],
     "--octaves": ["octaves k of the noise (bridson et al. 2007, section 2.2)", "1 is the field without"],
@@ -122,20 +123,22 @@ def sections(help_all):
 
 
 def options(section):
-    """{long name: (type, description)} of one section's option list (CLI11's layout: the names at
-    column 4, the description from column 32, continuation lines indented to it)."""
+    """{long name: (value kind, description)} of one section's option list (the help's layout: in
+    --help-all a subcommand's option line starts at column 4 with its names, "-d, --dim", then its
+    value's label, "N (2..8, default 7)" or "{a,b} (default a)"; the description follows on lines
+    indented by 8). The kind is the label's name (N, FILE), CHOICE for a list of choices, FLAG for none."""
     found, current = {}, None
     for line in section.split("\n"):
-        head = re.match(r"^    (-[^ ]+)(?: ([A-Z0-9]+)\S*)?(.*)$", line)
+        head = re.match(r"^    (-[-a-zA-Z0-9]+(?:, -[-a-zA-Z0-9]+)*)(?: (\S+))?", line)
         if head:
-            names = head.group(1).split(",")
-            current = [n for n in names if n.startswith("--")]
-            description = line[32:] if len(line) > 32 and line[31] == " " and line[32] != " " else ""
+            current = [n for n in head.group(1).split(", ") if n.startswith("--")]
+            label = head.group(2)
+            kind = "FLAG" if label is None else "CHOICE" if label.startswith("{") else label.rstrip(".")
             for n in current:
-                found[n] = (head.group(2) or "FLAG", description)
-        elif current and line.startswith(" " * 32) and line.strip():
+                found[n] = (kind, "")
+        elif current and line.startswith(" " * 8) and line.strip():
             for n in current:
-                found[n] = (found[n][0], found[n][1] + " " + line.strip())
+                found[n] = (found[n][0], (found[n][1] + " " + line.strip()).strip())
         else:
             current = None
     return found
@@ -179,7 +182,7 @@ def vocabulary_problems(per_section):
             continue
         where = ", ".join(s.replace("dfvn-sample ", "") for s, _, _ in uses)
         if name not in SHARED:
-            problems.append(f"{name} ({where}) is shared but has no entry in SHARED (and README's table)")
+            problems.append(f"{name} ({where}) is shared but has no entry in SHARED (and docs/CLI.md's table)")
             continue
         for section, kind, description in uses:
             missing = [p for p in SHARED[name] if p not in normalise(description)]
@@ -197,27 +200,27 @@ check(len(shared) >= 15, f"{len(shared)} names are shared: {' '.join(shared)}")
 problems = vocabulary_problems(per_section)
 check(not problems, "every shared name states its one meaning and unit" + "".join("\n     " + p for p in problems))
 
-# README's table "Options that mean the same everywhere" has a row for every shared name (--help and
-# --help-all aside).
+# docs/CLI.md's table "Options that mean the same everywhere" has a row for every shared name (--help
+# and --help-all aside).
 source_dir = os.environ.get("DFVN_SOURCE_DIR", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
-readme = open(os.path.join(source_dir, "README.md"), encoding="utf-8").read()
-start = readme.find("## Options that mean the same everywhere")
-table = readme[start:readme.find("\n## ", start + 1)] if start >= 0 else ""
+reference = open(os.path.join(source_dir, "docs", "CLI.md"), encoding="utf-8").read()
+start = reference.find("## Options that mean the same everywhere")
+table = reference[start:reference.find("\n## ", start + 1)] if start >= 0 else ""
 rows = [line for line in table.split("\n") if line.startswith("| `")]
 for name in shared:
     if name not in ("--help", "--help-all"):  # the paragraph above the table describes them
         check(any(re.search(rf"`(-[a-zA-Z], )?{re.escape(name)}[` ,]", row.split("|")[1]) for row in rows),
-              f"README's table of shared options has a row for {name}")
+              f"docs/CLI.md's table of shared options has a row for {name}")
 
 # The check itself fails on the departures it is there for: a shared name's unit changed in one
 # subcommand, a name newly shared without an entry, a second value type.
 for what, mutate in [
     ("table2's --frequency per image width", lambda ps: ps["dfvn-sample reproduce table2"].__setitem__(
-        "--frequency", ("FLOAT", "Noise frequency in cycles per image width"))),
+        "--frequency", ("F", "Noise frequency in cycles per image width"))),
     ("a new shared name without an entry", lambda ps: [ps[s].__setitem__("--brand-new", ("INT", "x"))
                                                        for s in ["dfvn-sample sample", "dfvn-sample stats"]]),
     ("--seed as a float in field", lambda ps: ps["dfvn-sample field"].__setitem__(
-        "--seed", ("FLOAT", ps["dfvn-sample field"]["--seed"][1]))),
+        "--seed", ("X", ps["dfvn-sample field"]["--seed"][1]))),
 ]:
     mutated = {s: dict(o) for s, o in per_section.items()}
     mutate(mutated)

@@ -257,7 +257,9 @@ TEST(Experiment, StatsColumnsAreNumbersOrEmpty) {
   // the periodic basis realises: near 0.5 / spacing = 3 cycles per unit length.
   EXPECT_NEAR(std::stod(cnj[column("field_frequency")]), 0.5 * 6.0, 0.3);
   EXPECT_FALSE(cnj[column("dropped")].empty());
-  EXPECT_EQ(cnj[column("notes")], "\"turning-bands noise; conformant\"");
+  EXPECT_EQ(cnj[column("noise")], "turning-bands");  // settings in columns of their own
+  EXPECT_EQ(cnj[column("mode")], "conformant");
+  EXPECT_EQ(cnj[column("notes")], "\"\"");
   EXPECT_EQ(cnj[column("domain")], "torus");
   EXPECT_FALSE(cnj[column("retraced")].empty());
   EXPECT_FALSE(cnj[column("kept_at_site")].empty());
@@ -269,7 +271,8 @@ TEST(Experiment, StatsColumnsAreNumbersOrEmpty) {
     EXPECT_EQ(sobol[column(name)], "") << name;
   EXPECT_EQ(sobol[column("domain_side")], "1.0");  // the fair protocol: every method in the run's domain
   EXPECT_EQ(sobol[column("domain")], "torus");
-  EXPECT_EQ(sobol[column("stat")], "value");  // a realization's row (summary rows: mean, sd)
+  EXPECT_EQ(sobol[column("scramble")], "owen");
+  EXPECT_EQ(sobol[column("noise")], "");
   EXPECT_NE(split_row(stats_csv_row(c, results[2], true))[column("seconds_generate")], "");
 }
 

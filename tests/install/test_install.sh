@@ -71,9 +71,12 @@ if [[ $DFVN_MAN_PAGE == 1 ]]; then
   for option in 'cycles\\-per\\-spacing' 'second\\-width' 'max\\-points' 'diagnose\\-points' 'spectrum\\-frequency'; do
     grep -q -- "$option" "$man_page" || fail "the man page does not show --${option//\\\\/}"
   done
-  # Issue 40: the exit codes (cmake/exit-status.h2m).
-  grep -q '^\.SH "EXIT STATUS"' "$man_page" && grep -q 'command line could not be parsed' "$man_page" ||
-    fail "the man page has no EXIT STATUS section"
+  for section in "EXIT STATUS" ENVIRONMENT FILES; do  # from cmake/dfvn-sample.h2m
+    grep -Eq "^\.SH \"?$section\"?$" "$man_page" || fail "the man page has no $section section"
+  done
+  grep -q 'TMPDIR' "$man_page" && grep -q 'OMP_NUM_THREADS' "$man_page" && grep -q 'sidecar' "$man_page" ||
+    fail "the man page does not name TMPDIR, OMP_NUM_THREADS and the sidecar"
+  grep -q 'command line could not be parsed' "$man_page" || fail "the man page's EXIT STATUS does not say what 2 means"
   echo "ok: the man page"
 fi
 
