@@ -5,9 +5,11 @@
 # TRACES.png: the traces drawn over the height field (lighter = lower) on the unit square, y up. SX SY: the
 # plane's slope, grad h. DX DY: the mean displacement. ANGLE: the principal direction of the
 # displacements' spread, degrees from x. TITLE, SETTINGS: the two lines of the title. SIDE: the PNG's side.
-sx = real(word(ARG4, 1)); sy = real(word(ARG4, 2))
-dx = real(word(ARG5, 1)); dy = real(word(ARG5, 2))
-angle = real(ARG6) * pi / 180
+# Numbers are read by eval, not real(): gnuplot 5.4's real("1e-300") refuses an exponent without a point.
+eval "sx = 1.0 * (".word(ARG4, 1).")"; eval "sy = 1.0 * (".word(ARG4, 2).")"
+eval "dx = 1.0 * (".word(ARG5, 1).")"; eval "dy = 1.0 * (".word(ARG5, 2).")"
+eval "angle_deg = 1.0 * (".ARG6.")"
+angle = angle_deg * pi / 180
 set terminal pngcairo size 1000, 1120 font 'sans,12'
 set output ARG1
 set title ARG3."\n".ARG7 noenhanced font 'sans,12'
@@ -28,4 +30,4 @@ set arrow 3 from 0.5 - 0.3 * px, 0.5 - 0.3 * py to 0.5 + 0.3 * px, 0.5 + 0.3 * p
 plot ARG2 binary filetype=png dx=1.0/real(ARG8) dy=1.0/real(ARG8) with rgbimage notitle, \
      NaN with lines lc rgb '#d62728' lw 4 title sprintf('slope direction grad h = (%g, %g)', sx, sy), \
      NaN with lines lc rgb '#1f77b4' lw 4 title sprintf('mean drift over t, to scale: (%.3g, %.3g), %.3g long', dx, dy, drift_len), \
-     NaN with lines lc rgb '#2ca02c' lw 3 dt 2 title sprintf('principal direction of the spread, %.1f deg from x', real(ARG6))
+     NaN with lines lc rgb '#2ca02c' lw 3 dt 2 title sprintf('principal direction of the spread, %.1f deg from x', angle_deg)
