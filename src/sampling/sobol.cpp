@@ -362,6 +362,7 @@ template <Scramble S>
   }
 }
 
+// SSE2's Owen kernels (AVX2 takes fill_block_points_in_lanes_avx2 in every dimension).
 // The batches pay in 1D-3D, where one point fills few lanes: 2^21 2D points in 37-40 ms against 55-68
 // per point, 3D 43-46 against 66-79 (one thread, fresh memory, load 9-13); in 4D-7D the two were within
 // the noise, so those keep the per-point kernel.
@@ -520,11 +521,10 @@ FillBlock choose_fill_block(std::size_t dims, Scramble scramble, Simd simd) {
   const bool unrolled = dims <= static_cast<std::size_t>(kUnrolledDimensions);
 #if defined(__x86_64__)
   if (simd == Simd::best && cpu_has_avx2()) {
-    if (owen) return &fill_block_points_in_lanes_avx2;
-    static constexpr auto kOwen = fill_block_table<Scramble::owen, true>();
+    if (owen) return &fill_block_points_in_lanes_avx2;  // every dimension
     static constexpr auto kNone = fill_block_table<Scramble::none, true>();
-    if (!unrolled) return owen ? &fill_block_any_avx2<Scramble::owen> : &fill_block_any_avx2<Scramble::none>;
-    return (owen ? kOwen : kNone)[dims - 1];
+    if (!unrolled) return &fill_block_any_avx2<Scramble::none>;
+    return kNone[dims - 1];
   }
 #endif
   (void)simd;
