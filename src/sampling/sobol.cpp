@@ -431,15 +431,18 @@ using U64x4 = Vector<std::uint64_t, 32>::type;
 // price is eight scalar stores per coordinate vector (the output is point-major). Points 8k + p share
 // the Gray code of 8k above bit 2 (gray(8k + p) = gray(8k) ^ gray(p)), so a coordinate's eight digits
 // are its running digits ^ lane_offsets. Same bits as fill_block_with: the same digits, keys, hashes and
-// arithmetic, lane by lane; the points before the first multiple of 8 and after the last take
-// fill_block_any.
+// arithmetic, lane by lane; the points before the first multiple of 16 (the step, two batches) and
+// after the last take fill_block_any.
 // kUnitBox: the domain is [0, 1)^D (the Python engines'), where lo + side u is u exactly and is skipped.
 template <bool kUnitBox>
 [[gnu::target("avx2"), gnu::always_inline]] inline void fill_block_points_in_lanes(const SobolBlocks& b, std::uint64_t begin,
                                                                                    std::uint64_t end) {
   using U32 = Vector<std::uint32_t, 32>::type;
   using F64 = Vector<double, 32>::type;
-  constexpr std::uint64_t kPoints = 8;
+  // Two batches of eight points per step, i .. i + 7 and i + 8 .. i + 15: their hash and scramble chains
+  // are independent, so the second fills the first's multiply latencies (one batch per step left
+  // the 2D kernel waiting on them).
+  constexpr std::uint64_t kPoints = 16;
   constexpr std::uint64_t kOneBits = 0x3ff0000000000000;  // the bits of 1.0
   constexpr std::uint64_t kBelowMask = (std::uint64_t{1} << 20) - 1;
   const std::uint64_t batch_begin = std::min(end, (begin + kPoints - 1) / kPoints * kPoints);
@@ -451,42 +454,49 @@ template <bool kUnitBox>
     current[j] = reverse_bits(b.sequence.digits(static_cast<std::uint32_t>(batch_begin), static_cast<int>(j)));
   const U64x4 stream = U64x4{} + b.stream;
   const double lo = b.lo, side = b.side;  // locals: the stores below cannot alias them
+  const std::size_t stride = SobolBlocks::stride(dims);
+  const std::uint32_t* row_2 = b.walk.data() + 2 * stride;
+  const std::uint32_t* row_3 = b.walk.data() + 3 * stride;
   for (std::uint64_t i = batch_begin; i < batch_end; i += kPoints) {
-    // hash_combine(stream, point) of points i .. i + 7, then per word w hash_combine(point_key, 1 + w).
-    const U64x4 point_keys[2] = {hash_combine_lanes(stream, U64x4{i, i + 1, i + 2, i + 3}),
-                                 hash_combine_lanes(stream, U64x4{i + 4, i + 5, i + 6, i + 7})};
+    // hash_combine(stream, point) of points i + 4 q .. i + 4 q + 3, then per word w hash_combine(point_key, 1 + w).
+    U64x4 point_keys[4];
+    for (std::size_t q = 0; q < 4; ++q) point_keys[q] = hash_combine_lanes(stream, U64x4{0, 1, 2, 3} + (i + 4 * q));
     double* x = b.out + (i - b.first) * dims;
     // Three coordinates per word, unrolled so that their shifts (20 part) are constants.
     for (std::size_t first = 0; first < dims; first += 3) {
-      U64x4 words[2];
-      for (std::size_t h = 0; h < 2; ++h) words[h] = hash_combine_lanes(point_keys[h], U64x4{} + (1 + first / 3));
+      U64x4 words[4];
+      for (std::size_t q = 0; q < 4; ++q) words[q] = hash_combine_lanes(point_keys[q], U64x4{} + (1 + first / 3));
 #pragma GCC unroll 3
       for (std::size_t part = 0; part < 3; ++part) {
         const std::size_t j = first + part;
         if (j >= dims) break;
         U32 offsets;
-        std::memcpy(&offsets, b.lane_offsets.data() + j * kPoints, sizeof offsets);
-        const U32 mixed = laine_karras_permutation(offsets ^ current[j], U32{} + b.keys[j]);
-        const __m256i high = reverse_bits_avx2(reinterpret_cast<__m256i>(mixed));
-        const __m256i halves[2] = {_mm256_cvtepu32_epi64(_mm256_castsi256_si128(high)),
-                                   _mm256_cvtepu32_epi64(_mm256_extracti128_si256(high, 1))};
-        for (std::size_t h = 0; h < 2; ++h) {
-          // fill_block_with's ((high << 32 | below << 12) >> 12) | 1.0's bits, below = word >> 20 part.
-          const U64x4 bits = (reinterpret_cast<U64x4>(halves[h]) << 20) | ((words[h] >> (20 * part)) & kBelowMask) | kOneBits;
-          const F64 unit = reinterpret_cast<F64>(bits) - 1.0;
-          F64 value = unit;
-          if constexpr (!kUnitBox) value = lo + side * unit;
-          for (std::size_t p = 0; p < 4; ++p) x[(4 * h + p) * dims + j] = value[p];
+        std::memcpy(&offsets, b.lane_offsets.data() + j * 8, sizeof offsets);
+        // Point i + 8 + p: Gray code gray(i) ^ 12 ^ gray(p) (i is a multiple of 16), directions 2 and 3 more.
+        const U32 digits = offsets ^ current[j];
+        const U32 mixed[2] = {laine_karras_permutation(digits, U32{} + b.keys[j]),
+                              laine_karras_permutation(digits ^ (row_2[j] ^ row_3[j]), U32{} + b.keys[j])};
+        for (std::size_t batch = 0; batch < 2; ++batch) {
+          const __m256i high = reverse_bits_avx2(reinterpret_cast<__m256i>(mixed[batch]));
+          const __m256i halves[2] = {_mm256_cvtepu32_epi64(_mm256_castsi256_si128(high)),
+                                     _mm256_cvtepu32_epi64(_mm256_extracti128_si256(high, 1))};
+          for (std::size_t h = 0; h < 2; ++h) {
+            // fill_block_with's ((high << 32 | below << 12) >> 12) | 1.0's bits, below = word >> 20 part.
+            const U64x4 below = (words[2 * batch + h] >> (20 * part)) & kBelowMask;
+            const U64x4 bits = (reinterpret_cast<U64x4>(halves[h]) << 20) | below | kOneBits;
+            const F64 unit = reinterpret_cast<F64>(bits) - 1.0;
+            F64 value = unit;
+            if constexpr (!kUnitBox) value = lo + side * unit;
+            for (std::size_t p = 0; p < 4; ++p) x[(8 * batch + 4 * h + p) * dims + j] = value[p];
+          }
         }
       }
     }
     if (i + kPoints < batch_end) {
-      // Gray-code bit 2 of a multiple of 8 is its bit 3, which flips from one to the next: from point i to
-      // i + 8 the Gray code changes in bit ctz(i + 8) and in bit 2.
-      const std::size_t stride = SobolBlocks::stride(dims);
+      // Gray-code bit 3 of a multiple of 16 is its bit 4, which flips from one to the next: from point i to
+      // i + 16 the Gray code changes in bit ctz(i + 16) and in bit 3.
       const std::uint32_t* row = b.walk.data() + static_cast<std::size_t>(std::countr_zero(i + kPoints)) * stride;
-      const std::uint32_t* row_2 = b.walk.data() + 2 * stride;
-      for (std::size_t j = 0; j < dims; ++j) current[j] ^= row[j] ^ row_2[j];
+      for (std::size_t j = 0; j < dims; ++j) current[j] ^= row[j] ^ row_3[j];
     }
   }
   if (batch_end < end) fill_block_any_avx2<Scramble::owen>(b, std::max(begin, batch_end), end);
