@@ -22,8 +22,8 @@ void expect_rows(const PointSet& whole, const PointSet& part, std::uint64_t firs
 
 TEST(SamplingRanges, SobolRowsAcrossBlocks) {
   const Box box{0.0, 1.5};
-  // Owen on AVX2: sixteen points at a time from multiples of 16, a range's points before and after them
-  // one by one. On SSE2 2D and 3D take the batched kernel (batches of 8 from a range's first point), 5D the
+  // Owen on AVX2: 32 points at a time from multiples of 32, a range's points before and after them one
+  // by one. On SSE2 2D and 3D take the batched kernel (batches of 8 from a range's first point), 5D the
   // per-point one and 20D the one for any dimension.
   for (int dim : {2, 3, 5, 20})
     for (Scramble scramble : {Scramble::owen, Scramble::none}) {
