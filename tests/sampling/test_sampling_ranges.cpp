@@ -22,8 +22,10 @@ void expect_rows(const PointSet& whole, const PointSet& part, std::uint64_t firs
 
 TEST(SamplingRanges, SobolRowsAcrossBlocks) {
   const Box box{0.0, 1.5};
-  // 2D and 3D take the batched Owen kernel (batches of 8 from a range's first point), 5D the per-point one.
-  for (int dim : {2, 3, 5})
+  // Owen on AVX2: 32 points at a time from multiples of 32, a range's points before and after them one
+  // by one. On SSE2 2D and 3D take the batched kernel (batches of 8 from a range's first point), 5D the
+  // per-point one and 20D the one for any dimension.
+  for (int dim : {2, 3, 5, 20})
     for (Scramble scramble : {Scramble::owen, Scramble::none}) {
       const PointSet whole = sobol_points(dim, 10000, box, scramble, 7, 2);
       for (auto [first, count] : {std::pair<std::uint64_t, std::uint64_t>{0, 10000}, {1, 4095}, {4000, 200},
