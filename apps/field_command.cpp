@@ -103,7 +103,7 @@ struct FieldCommand : Subcommand {
     cmd->add_option("--diagnose-points", diagnosis.points, "With --diagnose: number of uniform random points")
         ->capture_default_str()
         ->check(CLI::Range(std::uint64_t{10}, std::uint64_t{100000000}));
-    cmd->add_option("--periods", diagnosis.periods, "With --diagnose: the points fill [0, periods / F]^N")
+    cmd->add_option("--periods", diagnosis.periods, "With --diagnose: the points fill [0, periods / F]^N; periods in [0.001, 1e9]")
         ->capture_default_str()
         ->check(real_in(1e-3, 1e9));
     cmd->add_option("-o,--output", output,
