@@ -15,6 +15,7 @@
 #include "dfvn/core/parallel.hpp"
 #include "dfvn/stats/distance_scale.hpp"
 #include "dfvn/stats/kd_tree.hpp"
+#include "dfvn/stats/nearest_other.hpp"
 #include "dfvn/stats/periodic_images.hpp"
 #include "dfvn/stats/periodic_neighbours.hpp"
 
@@ -197,7 +198,10 @@ void count_rdf_pairs_impl(const PointSet& points, const std::vector<std::uint32_
   const double side = points.domain.side;
   const bool ball = points.domain.kind == DomainKind::ball;
   const PointSetAdaptor<N> adaptor{points};
-  const KdTree<N> tree(N, adaptor, kd_tree_params());  // built by its constructor
+  // nanoflann's tree with leaves of nearest_other's size, searched by nearest_other::rows_within.
+  const KdTree<N> tree(N, adaptor, kd_tree_params(nearest_other::kLeafSize));  // built by its constructor
+  const nearest_other::Index<N, 4> index(points, tree);
+  const std::uint32_t* original = index.original();
 
   const int bins = plan.bins;
   const double r_max = plan.r_max, r2 = r_max * r_max;
@@ -212,7 +216,7 @@ void count_rdf_pairs_impl(const PointSet& points, const std::vector<std::uint32_
 #pragma omp parallel num_threads(resolve_threads(threads))
   {
     RdfPairSums local = sums.empty_copy();
-    std::vector<std::pair<std::uint32_t, double>> matches;
+    nearest_other::Scratch<N> scratch = nearest_other::make_scratch(index);
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t b = 0; b < blocks; ++b) {
       if (progress) {  // only the first thread reports
@@ -222,26 +226,23 @@ void count_rdf_pairs_impl(const PointSet& points, const std::vector<std::uint32_
       for (std::int64_t k = b * kBlock; k < std::min(q, (b + 1) * kBlock); ++k) {
         const std::uint32_t i = queries[static_cast<std::size_t>(k)];
         const double* x = points.point(i);
-        // The pairs within r_max of x (or, on the torus, of one of its images): each pair once.
+        // The pairs within r_max of x (or, on the torus, of one of its images): each pair once. The sums are
+        // fixed-point integers, so the order in which the search finds the pairs does not matter.
         const auto count_pairs = [&](const double* position, bool image) {
-          matches.clear();
-          tree.radiusSearch(position, search2, matches, nanoflann::SearchParams(32, 0.0f, false));
-          for (const auto& match : matches) {
-            const std::uint32_t j = match.first;
-            if (j == i && !image) continue;
-            const double* y = points.point(j);
-            double dist2 = 0.0;
-            for (int a = 0; a < N; ++a) dist2 += (position[a] - y[a]) * (position[a] - y[a]);
-            if (!(dist2 < r2)) continue;
+          nearest_other::rows_within<N>(index, position, search2, scratch, [&](std::uint32_t row, double dist2,
+                                                                              const double* block, int lane) {
+            const std::uint32_t j = original[row];
+            if (j == i && !image) return;
+            if (!(dist2 < r2)) return;
             const auto bin = static_cast<int>(std::sqrt(dist2) / bin_width);
-            if (bin >= bins) continue;
+            if (bin >= bins) return;
             double overlap = 1.0;  // |W intersect (W + d)|; the torus has no edge
             if (ball)
               overlap = ball_overlap_volume(N, 0.5 * side, std::sqrt(dist2));
-            else if (!plan.periodic)
-              for (int a = 0; a < N; ++a) overlap *= side - std::abs(x[a] - y[a]);
+            else if (!plan.periodic)  // y_a = block[4 a + lane]: the copy of point j just scanned
+              for (int a = 0; a < N; ++a) overlap *= side - std::abs(x[a] - block[4 * a + lane]);
             local.add(bin, 1.0 / overlap);
-          }
+          });
         };
         count_pairs(x, false);
         if (plan.periodic)
