@@ -28,6 +28,7 @@
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #if defined(__x86_64__)
@@ -291,6 +292,24 @@ decltype(auto) with_kernel(Simd simd, F&& f) {
   return f(Kernel<N, 4>{&baseline::nearest_rows<N, kPeriodic>});
 }
 
+// Calls f(lanes, rows_within) with the widest build this CPU runs (`simd` best) or the baseline build:
+// lanes a std::integral_constant<int, Lanes>, rows_within(index, q, search2, scratch, visit) that build's
+// rows_within over an Index<N, Lanes> (stats/nearest_other_kernel.inc). Every build visits the same rows
+// at the same squared distances, bit for bit.
+template <int N, class F>
+decltype(auto) with_rows_within(Simd simd, F&& f) {
+#if defined(__x86_64__)
+  if (simd == Simd::best && cpu_has_avx512())
+    return f(std::integral_constant<int, 8>{}, [](const Index<N, 8>& index, const double* q, double search2, Scratch<N>& s,
+                                                  auto&& visit) { avx512::rows_within<N>(index, q, search2, s, visit); });
+  if (simd == Simd::best && cpu_has_avx2())
+    return f(std::integral_constant<int, 4>{}, [](const Index<N, 4>& index, const double* q, double search2, Scratch<N>& s,
+                                                  auto&& visit) { avx2::rows_within<N>(index, q, search2, s, visit); });
+#endif
+  return f(std::integral_constant<int, 4>{}, [](const Index<N, 4>& index, const double* q, double search2, Scratch<N>& s,
+                                                auto&& visit) { baseline::rows_within<N>(index, q, search2, s, visit); });
+}
+
 // distances[i] = distance(i, j) for each of the first `queries` points i and a nearest other point j (on
 // `torus` if kPeriodic: `distance` then measures on it), with the widest build this CPU runs, in parallel
 // over chunks of leaves (the same result for any thread count); progress counts leaves done.
@@ -317,74 +336,6 @@ std::vector<double> nearest_distances(const PointSet& points, std::size_t querie
     });
   });
   return distances;
-}
-
-// Every row of `index` whose point lies within squared distance `search2` of the point q (N coordinates,
-// anywhere: inside the tree's box or not): visit(row, dist2, block, lane) with dist2 = sum over the axes in
-// order of (x_k - q_k)^2, rounded as distance_between() rounds it (no fused multiply-adds), for every row
-// with dist2 <= search2 (padding lanes never); the row's coordinates are block[4 k + lane], the copy just
-// scanned (in cache, unlike the input's row). A subtree or leaf is skipped when its lower bound (the
-// incremental distance of nearest_rows, a leaf's bounding box) exceeds search2: callers that keep the pairs
-// below r^2 pass search2 = r^2 (1 + 1e-9), far above the bounds' rounding, and filter by dist2 themselves.
-// Blocks of four points to a GCC vector (two SSE2 instructions each in this baseline build). The RDF's pair
-// counts use it (stats/radial_distribution.cpp): 2-3x nanoflann's radiusSearch with its result vector.
-template <int N, class Visit>
-void rows_within(const Index<N, 4>& index, const double* q, double search2, Scratch<N>& s, Visit&& visit) {
-  using Node = typename Index<N, 4>::Node;
-  const Node* nodes = index.nodes().data();
-  const auto* leaves = index.leaves().data();
-  const double* blocks = index.blocks();
-  StackEntry<N>* stack = s.stack.data();
-  alignas(32) double padded[kBoxLanes<N>] = {};  // zero-padded, as the leaves' boxes
-  for (int k = 0; k < N; ++k) padded[k] = q[k];
-  int top = 0;
-  std::int32_t node = 0;
-  double bound = 0.0;
-  double offset[N] = {};
-  for (;;) {
-    while (nodes[node].cut >= 0) {  // down the nearer child; the farther one kept if within reach
-      const Node& nd = nodes[node];
-      const double value = q[nd.cut];
-      const double diff1 = value - nd.low, diff2 = value - nd.high;
-      std::int32_t first, other;
-      double cut;
-      if (diff1 + diff2 < 0)
-        first = node + 1, other = nd.child2, cut = diff2 * diff2;
-      else
-        first = nd.child2, other = node + 1, cut = diff1 * diff1;
-      const double other_bound = bound + cut - offset[nd.cut];
-      if (other_bound <= search2) {
-        StackEntry<N>& e = stack[top++];
-        e.node = other;
-        e.bound = other_bound;
-        std::memcpy(e.offset, offset, sizeof offset);
-        e.offset[nd.cut] = cut;
-      }
-      node = first;
-    }
-    const auto l = static_cast<std::uint32_t>(-1 - nodes[node].cut);
-    if (box_distance<N>(padded, index.leaf_box(l)) <= search2) {
-      const auto& leaf = leaves[l];
-      const std::uint32_t count = (leaf.count + 3) / 4;
-      const double* first_block = blocks + static_cast<std::size_t>(leaf.block) * N * 4;
-      for (std::uint32_t b = 0; b < count; ++b) {
-        const double* x = first_block + b * N * 4;
-        Vec4 v, acc;
-        for (int k = 0; k < N; ++k) {
-          std::memcpy(&v, x + k * 4, sizeof v);
-          const Vec4 d = v - q[k];
-          acc = k == 0 ? d * d : acc + d * d;
-        }
-        for (int lane = 0; lane < 4; ++lane)
-          if (acc[lane] <= search2) visit(leaf.first + b * 4 + static_cast<std::uint32_t>(lane), acc[lane], x, lane);
-      }
-    }
-    if (top == 0) return;
-    const StackEntry<N>& e = stack[--top];
-    node = e.node;
-    bound = e.bound;
-    std::memcpy(offset, e.offset, sizeof offset);
-  }
 }
 
 // For tests and benchmarks: the input index of a nearest other point of every point, found by the one build
