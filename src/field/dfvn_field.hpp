@@ -140,6 +140,15 @@ class DfvnField {
   double wavenumber() const { return noise_->wavenumber(); }  // k_eff of the raw basis
   FieldKind kind() const { return options_.kind; }
   std::uint64_t seed() const { return seed_; }
+  // The basis itself when the field's f_i are exactly raw_functions (the basis at its scale and amplitude):
+  // a dfvn field without constraint, obstacles, flow or octaves, whose domain check is the frequency's
+  // alone; else null. For kernels that evaluate a known basis their own way, bit for bit as evaluate
+  // (warp/warp_lanes.hpp); a transform (stretch, time, lift) wraps the basis in another type.
+  const NoiseFunctions<N>* plain_basis() const {
+    const bool plain = options_.kind == FieldKind::dfvn && !constraint_ && !flow_active_ && octave_fields_.empty() &&
+                       !height_ && stretch_s_minus_1_ == 0.0 && !curl_noise_;
+    return plain ? noise_.get() : nullptr;
+  }
 
  private:
   std::shared_ptr<const NoiseFunctions<N>> noise_;  // shared: a field is cheap to copy

@@ -94,6 +94,11 @@ constexpr std::uint64_t axis_multiplier(int axis) { return mix64(kGoldenGamma * 
 }  // namespace
 
 template <int N>
+std::uint64_t QuinticGradientNoise<N>::lattice_multiplier(int axis) {
+  return axis_multiplier(axis);
+}
+
+template <int N>
 Vec<N> QuinticGradientNoise<N>::lattice_gradient(int function, const std::array<std::int64_t, N>& lattice) const {
   return hashed_gradient(keys_[function], lattice);
 }

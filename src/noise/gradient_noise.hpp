@@ -55,6 +55,9 @@ class QuinticGradientNoise final : public NoiseFunctions<N> {
   // The same at the noise's phase: p cos alpha + q sin alpha (the header's comment); p at phase 0.
   Vec<N> rotated_lattice_gradient(int function, const std::array<std::int64_t, N>& lattice) const;
   double phase() const { return phase_; }
+  std::uint64_t key(int function) const { return keys_[function]; }  // hashed_gradient's key of function i
+  // The odd multiplier of lattice coordinate `axis` in the gradients' hash (gradient_noise.cpp).
+  static std::uint64_t lattice_multiplier(int axis);
   const Vec<N>& offset(int function) const { return offsets_[function]; }
   const Eigen::Matrix<double, N, N>& rotation(int function) const { return rotations_[function]; }
 

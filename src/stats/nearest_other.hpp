@@ -28,6 +28,7 @@
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #if defined(__x86_64__)
@@ -289,6 +290,24 @@ decltype(auto) with_kernel(Simd simd, F&& f) {
   if (simd == Simd::best && cpu_has_avx2()) return f(Kernel<N, 4>{&avx2::nearest_rows<N, kPeriodic>});
 #endif
   return f(Kernel<N, 4>{&baseline::nearest_rows<N, kPeriodic>});
+}
+
+// Calls f(lanes, rows_within) with the widest build this CPU runs (`simd` best) or the baseline build:
+// lanes a std::integral_constant<int, Lanes>, rows_within(index, q, search2, scratch, visit) that build's
+// rows_within over an Index<N, Lanes> (stats/nearest_other_kernel.inc). Every build visits the same rows
+// at the same squared distances, bit for bit.
+template <int N, class F>
+decltype(auto) with_rows_within(Simd simd, F&& f) {
+#if defined(__x86_64__)
+  if (simd == Simd::best && cpu_has_avx512())
+    return f(std::integral_constant<int, 8>{}, [](const Index<N, 8>& index, const double* q, double search2, Scratch<N>& s,
+                                                  auto&& visit) { avx512::rows_within<N>(index, q, search2, s, visit); });
+  if (simd == Simd::best && cpu_has_avx2())
+    return f(std::integral_constant<int, 4>{}, [](const Index<N, 4>& index, const double* q, double search2, Scratch<N>& s,
+                                                  auto&& visit) { avx2::rows_within<N>(index, q, search2, s, visit); });
+#endif
+  return f(std::integral_constant<int, 4>{}, [](const Index<N, 4>& index, const double* q, double search2, Scratch<N>& s,
+                                                auto&& visit) { baseline::rows_within<N>(index, q, search2, s, visit); });
 }
 
 // distances[i] = distance(i, j) for each of the first `queries` points i and a nearest other point j (on

@@ -7,14 +7,17 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <type_traits>
 
 #include <fmt/format.h>
 
 #include "dfvn/core/dimension.hpp"
 #include "dfvn/core/hash.hpp"
 #include "dfvn/core/parallel.hpp"
+#include "dfvn/core/simd.hpp"
 #include "dfvn/stats/distance_scale.hpp"
 #include "dfvn/stats/kd_tree.hpp"
+#include "dfvn/stats/nearest_other.hpp"
 #include "dfvn/stats/periodic_images.hpp"
 #include "dfvn/stats/periodic_neighbours.hpp"
 
@@ -197,61 +200,63 @@ void count_rdf_pairs_impl(const PointSet& points, const std::vector<std::uint32_
   const double side = points.domain.side;
   const bool ball = points.domain.kind == DomainKind::ball;
   const PointSetAdaptor<N> adaptor{points};
-  const KdTree<N> tree(N, adaptor, kd_tree_params());  // built by its constructor
+  // nanoflann's tree with leaves of nearest_other's size, searched by nearest_other::rows_within in the
+  // widest build this CPU runs (the same pairs at the same squared distances in every build).
+  const KdTree<N> tree(N, adaptor, kd_tree_params(nearest_other::kLeafSize));  // built by its constructor
+  nearest_other::with_rows_within<N>(Simd::best, [&]<int Lanes>(std::integral_constant<int, Lanes>, auto rows_within) {
+    const nearest_other::Index<N, Lanes> index(points, tree);
+    const std::uint32_t* original = index.original();
 
-  const int bins = plan.bins;
-  const double r_max = plan.r_max, r2 = r_max * r_max;
-  // The tree searches a little wider than r_max, so that its pruning (bounds that round) cannot lose a
-  // pair; each pair is then counted by its own squared distance, summed over the axes in order.
-  const double search2 = r2 * (1.0 + 1e-9);
-  const double bin_width = r_max / bins;
-  constexpr std::int64_t kBlock = 64;
-  const auto q = static_cast<std::int64_t>(queries.size());
-  const std::int64_t blocks = (q + kBlock - 1) / kBlock;
-  std::atomic<std::int64_t> blocks_done{0};
+    const int bins = plan.bins;
+    const double r_max = plan.r_max, r2 = r_max * r_max;
+    // The tree searches a little wider than r_max, so that its pruning (bounds that round) cannot lose a
+    // pair; each pair is then counted by its own squared distance, summed over the axes in order.
+    const double search2 = r2 * (1.0 + 1e-9);
+    const double bin_width = r_max / bins;
+    constexpr std::int64_t kBlock = 64;
+    const auto q = static_cast<std::int64_t>(queries.size());
+    const std::int64_t blocks = (q + kBlock - 1) / kBlock;
+    std::atomic<std::int64_t> blocks_done{0};
 #pragma omp parallel num_threads(resolve_threads(threads))
-  {
-    RdfPairSums local = sums.empty_copy();
-    std::vector<std::pair<std::uint32_t, double>> matches;
+    {
+      RdfPairSums local = sums.empty_copy();
+      nearest_other::Scratch<N> scratch = nearest_other::make_scratch(index);
 #pragma omp for schedule(dynamic, 1)
-    for (std::int64_t b = 0; b < blocks; ++b) {
-      if (progress) {  // only the first thread reports
-        const std::int64_t done = blocks_done.fetch_add(1, std::memory_order_relaxed);
-        if (omp_get_thread_num() == 0) progress(static_cast<double>(done) / static_cast<double>(blocks));
+      for (std::int64_t b = 0; b < blocks; ++b) {
+        if (progress) {  // only the first thread reports
+          const std::int64_t done = blocks_done.fetch_add(1, std::memory_order_relaxed);
+          if (omp_get_thread_num() == 0) progress(static_cast<double>(done) / static_cast<double>(blocks));
+        }
+        for (std::int64_t k = b * kBlock; k < std::min(q, (b + 1) * kBlock); ++k) {
+          const std::uint32_t i = queries[static_cast<std::size_t>(k)];
+          const double* x = points.point(i);
+          // The pairs within r_max of x (or, on the torus, of one of its images): each pair once. The sums are
+          // fixed-point integers, so the order in which the search finds the pairs does not matter.
+          const auto count_pairs = [&](const double* position, bool image) {
+            rows_within(index, position, search2, scratch, [&](std::uint32_t row, double dist2, const double* block, int lane) {
+              const std::uint32_t j = original[row];
+              if (j == i && !image) return;
+              if (!(dist2 < r2)) return;
+              const auto bin = static_cast<int>(std::sqrt(dist2) / bin_width);
+              if (bin >= bins) return;
+              double overlap = 1.0;  // |W intersect (W + d)|; the torus has no edge
+              if (ball)
+                overlap = ball_overlap_volume(N, 0.5 * side, std::sqrt(dist2));
+              else if (!plan.periodic)  // y_a = block[Lanes a + lane]: the copy of point j just scanned
+                for (int a = 0; a < N; ++a) overlap *= side - std::abs(x[a] - block[Lanes * a + lane]);
+              local.add(bin, 1.0 / overlap);
+            });
+          };
+          count_pairs(x, false);
+          if (plan.periodic)
+            for_each_periodic_image<N>(x, points.domain.lo, side, [&] { return r_max; },
+                                       [&](const double* image) { count_pairs(image, true); });
+        }
       }
-      for (std::int64_t k = b * kBlock; k < std::min(q, (b + 1) * kBlock); ++k) {
-        const std::uint32_t i = queries[static_cast<std::size_t>(k)];
-        const double* x = points.point(i);
-        // The pairs within r_max of x (or, on the torus, of one of its images): each pair once.
-        const auto count_pairs = [&](const double* position, bool image) {
-          matches.clear();
-          tree.radiusSearch(position, search2, matches, nanoflann::SearchParams(32, 0.0f, false));
-          for (const auto& match : matches) {
-            const std::uint32_t j = match.first;
-            if (j == i && !image) continue;
-            const double* y = points.point(j);
-            double dist2 = 0.0;
-            for (int a = 0; a < N; ++a) dist2 += (position[a] - y[a]) * (position[a] - y[a]);
-            if (!(dist2 < r2)) continue;
-            const auto bin = static_cast<int>(std::sqrt(dist2) / bin_width);
-            if (bin >= bins) continue;
-            double overlap = 1.0;  // |W intersect (W + d)|; the torus has no edge
-            if (ball)
-              overlap = ball_overlap_volume(N, 0.5 * side, std::sqrt(dist2));
-            else if (!plan.periodic)
-              for (int a = 0; a < N; ++a) overlap *= side - std::abs(x[a] - y[a]);
-            local.add(bin, 1.0 / overlap);
-          }
-        };
-        count_pairs(x, false);
-        if (plan.periodic)
-          for_each_periodic_image<N>(x, points.domain.lo, side, [&] { return r_max; },
-                                     [&](const double* image) { count_pairs(image, true); });
-      }
-    }
 #pragma omp critical(dfvn_rdf_pair_sums)
-    sums.merge(local);
-  }
+      sums.merge(local);
+    }
+  });
 }
 
 template <int N>

@@ -4,16 +4,16 @@
 #include <atomic>
 #include <cmath>
 #include <numbers>
+#include <vector>
 #include <stdexcept>
 
 #include <fmt/format.h>
 #include <omp.h>
 
 #include "dfvn/core/parallel.hpp"
-#include "dfvn/noise/noise_domain.hpp"
-
-#include <omp.h>
 #include "dfvn/noise/gradient_noise.hpp"
+#include "dfvn/noise/noise_domain.hpp"
+#include "dfvn/warp/warp_lanes.hpp"
 
 namespace dfvn {
 
@@ -95,29 +95,49 @@ double warp_pattern(WarpPattern pattern, double x, double y) {
 
 namespace {
 
-// Evaluates `value_at(point)` on an m x m grid of sub-pixel centres of every pixel and averages.
-template <typename PointFunction>
-FloatImage render(const WarpConfig& config, PointFunction&& value_at, const FractionProgress& progress = {}) {
+// The centre of sub-pixel (a, b) of pixel (col, row) on a side x side grid; the image is one unit wide.
+Vec<2> sample_point(int col, int row, int a, int b, int side, double pixel) {
+  return Vec<2>((col + (b + 0.5) / side) * pixel, (row + (a + 0.5) / side) * pixel);
+}
+
+// Fills `image` a row at a time: row_values(row, values) writes the row's width x samples values, pixel after
+// pixel, each pixel's m x m sub-pixel values in row-major order (sample_point), and every pixel is their
+// average, summed in that order.
+template <typename RowFunction>
+FloatImage render_rows(const WarpConfig& config, RowFunction&& row_values, const FractionProgress& progress = {}) {
   FloatImage image{config.width, config.height, std::vector<float>(static_cast<std::size_t>(config.width) * config.height)};
-  const int side = static_cast<int>(std::lround(std::sqrt(static_cast<double>(config.samples))));
-  const double pixel = 1.0 / config.width;  // the image is one unit wide
   std::atomic<int> rows_started{0};
-#pragma omp parallel for schedule(dynamic, 1) num_threads(resolve_threads(config.threads))
-  for (int row = 0; row < config.height; ++row) {
-    if (progress) {  // rows started over rows; only the first thread reports
-      const int started = rows_started.fetch_add(1, std::memory_order_relaxed);
-      if (omp_get_thread_num() == 0) progress(static_cast<double>(started) / config.height);
-    }
-    for (int col = 0; col < config.width; ++col) {
-      double sum = 0.0;
-      for (int a = 0; a < side; ++a)
-        for (int b = 0; b < side; ++b)
-          sum += value_at(Vec<2>((col + (b + 0.5) / side) * pixel, (row + (a + 0.5) / side) * pixel));
-      image.values[static_cast<std::size_t>(row) * config.width + col] = static_cast<float>(sum / config.samples);
+#pragma omp parallel num_threads(resolve_threads(config.threads))
+  {
+    std::vector<double> values(static_cast<std::size_t>(config.width) * config.samples);  // one per thread
+#pragma omp for schedule(dynamic, 1)
+    for (int row = 0; row < config.height; ++row) {
+      if (progress) {  // rows started over rows; only the first thread reports
+        const int started = rows_started.fetch_add(1, std::memory_order_relaxed);
+        if (omp_get_thread_num() == 0) progress(static_cast<double>(started) / config.height);
+      }
+      row_values(row, values.data());
+      for (int col = 0; col < config.width; ++col) {
+        double sum = 0.0;
+        for (int s = 0; s < config.samples; ++s) sum += values[static_cast<std::size_t>(col) * config.samples + s];
+        image.values[static_cast<std::size_t>(row) * config.width + col] = static_cast<float>(sum / config.samples);
+      }
     }
   }
   if (progress) progress(1.0);
   return image;
+}
+
+// render_rows with value_at(point) at every sample point.
+template <typename PointFunction>
+FloatImage render(const WarpConfig& config, PointFunction&& value_at, const FractionProgress& progress = {}) {
+  const int side = static_cast<int>(std::lround(std::sqrt(static_cast<double>(config.samples))));
+  const double pixel = 1.0 / config.width;
+  return render_rows(config, [&](int row, double* values) {
+    for (int col = 0; col < config.width; ++col)
+      for (int a = 0; a < side; ++a)
+        for (int b = 0; b < side; ++b) *values++ = value_at(sample_point(col, row, a, b, side, pixel));
+  }, progress);
 }
 
 }  // namespace
@@ -141,10 +161,43 @@ FloatImage warp_image(const WarpConfig& config, const WarpVariant& variant, std:
   const double trace_time = config.time * config.field_magnitude;  // see WarpConfig::field_magnitude
   const int threads = resolve_threads(config.threads);
   std::vector<TraceStats> per_thread(static_cast<std::size_t>(threads));
-  FloatImage image = render(config, [&](const Vec<2>& p) {
-    const Vec<2> q = tracer.trace(p, trace_time, &per_thread[static_cast<std::size_t>(omp_get_thread_num())]);
-    return warp_pattern(config.pattern, q[0], q[1]);
-  }, progress);
+  FloatImage image;
+  if (const auto lanes = warp_lanes::quintic_field_2d(field, tracer.options())) {
+    // The shader's field: a row's sample points traced a vector at a time (warp/warp_lanes.hpp), the same
+    // bits as the tracer's; a trace that reaches the edge of the noise domain is the tracer's.
+    const int side = static_cast<int>(std::lround(std::sqrt(static_cast<double>(config.samples))));
+    const double pixel = 1.0 / config.width;
+    const std::size_t count = static_cast<std::size_t>(config.width) * config.samples;
+    image = render_rows(config, [&](int row, double* values) {
+      std::vector<double> xs(count), ys(count), end_x(count), end_y(count);  // a row's points: no allocation per trace
+      std::vector<std::int64_t> evaluations(count);
+      std::vector<std::uint8_t> traced(count);
+      std::size_t i = 0;
+      for (int col = 0; col < config.width; ++col)
+        for (int a = 0; a < side; ++a)
+          for (int b = 0; b < side; ++b, ++i) {
+            const Vec<2> p = sample_point(col, row, a, b, side, pixel);
+            xs[i] = p[0], ys[i] = p[1];
+          }
+      warp_lanes::trace(*lanes, tracer.options(), trace_time, count, xs.data(), ys.data(), end_x.data(), end_y.data(),
+                        evaluations.data(), traced.data());
+      TraceStats& stats = per_thread[static_cast<std::size_t>(omp_get_thread_num())];
+      for (i = 0; i < count; ++i) {
+        if (traced[i]) {
+          stats.field_evaluations += evaluations[i];
+          values[i] = warp_pattern(config.pattern, end_x[i], end_y[i]);
+        } else {
+          const Vec<2> q = tracer.trace(Vec<2>(xs[i], ys[i]), trace_time, &stats);
+          values[i] = warp_pattern(config.pattern, q[0], q[1]);
+        }
+      }
+    }, progress);
+  } else {
+    image = render(config, [&](const Vec<2>& p) {
+      const Vec<2> q = tracer.trace(p, trace_time, &per_thread[static_cast<std::size_t>(omp_get_thread_num())]);
+      return warp_pattern(config.pattern, q[0], q[1]);
+    }, progress);
+  }
   if (field_evaluations) {
     *field_evaluations = 0;
     for (const auto& s : per_thread) *field_evaluations += s.field_evaluations;

@@ -3,9 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
-#include <vector>
 #include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
 
 #include "dfvn/core/dimension.hpp"
 #include "dfvn/core/simd.hpp"
@@ -176,6 +179,58 @@ TEST(NearestNeighbour, SearchBuildsAgree) {
         if constexpr (Lanes == 4) EXPECT_EQ(k.rows, (&nearest_other::baseline::nearest_rows<N, false>));
         else ADD_FAILURE() << "Simd::baseline gave an 8-lane build";
       });
+    });
+  }
+}
+
+// rows_within in every build (the RDF's pair search): the rows within a radius of a query point, each at the
+// squared distance brute force sums (axes in order), the coordinates handed over those of the row, and no other
+// row; 2D-8D, random points with duplicates, queries at points of the set and off it, radii of 1-3 spacings.
+TEST(NearestNeighbour, RowsWithinEqualsBruteForceInEveryBuild) {
+  for (int dimension = 2; dimension <= 8; ++dimension) {
+    PointSet p = uniform_random_points(dimension, 3000, Box{0.0, 1.0}, 80 + dimension, 1);
+    for (int k = 0; k < 5; ++k) p.coordinates.insert(p.coordinates.end(), p.point(k * 17), p.point(k * 17) + dimension);
+    const PointSet queries = uniform_random_points(dimension, 20, Box{-0.1, 1.2}, 90 + dimension, 1);
+    const double spacing = std::pow(1.0 / static_cast<double>(p.size()), 1.0 / dimension);
+    dispatch_dimension(dimension, [&]<int N>() {
+      const PointSetAdaptor<N> adaptor{p};
+      const KdTree<N> tree(N, adaptor, kd_tree_params(nearest_other::kLeafSize));
+      const auto check = [&]<int Lanes>(std::integral_constant<int, Lanes>, auto rows_within, const char* build) {
+        const nearest_other::Index<N, Lanes> index(p, tree);
+        nearest_other::Scratch<N> scratch = nearest_other::make_scratch(index);
+        for (std::size_t k = 0; k < 40; ++k) {
+          const double* q = k < 20 ? p.point(k * 41) : queries.point(k - 20);
+          const double search2 = std::pow((1.0 + static_cast<double>(k % 3)) * spacing, 2);
+          std::vector<std::pair<std::uint32_t, double>> found, expected;
+          rows_within(index, q, search2, scratch, [&](std::uint32_t row, double dist2, const double* block, int lane) {
+            const std::uint32_t j = index.original()[row];
+            for (int a = 0; a < N; ++a) EXPECT_EQ(block[Lanes * a + lane], p.point(j)[a]) << N << "D " << build;
+            found.emplace_back(j, dist2);
+          });
+          for (std::size_t j = 0; j < p.size(); ++j) {
+            double dist2 = 0.0;
+            for (int a = 0; a < N; ++a) dist2 += (p.point(j)[a] - q[a]) * (p.point(j)[a] - q[a]);
+            if (dist2 <= search2) expected.emplace_back(static_cast<std::uint32_t>(j), dist2);
+          }
+          std::sort(found.begin(), found.end());
+          EXPECT_EQ(found, expected) << N << "D " << build << " query " << k;
+        }
+      };
+      check(std::integral_constant<int, 4>{}, [](const auto& index, const double* q, double search2, auto& s, auto&& visit) {
+        nearest_other::baseline::rows_within<N>(index, q, search2, s, visit);
+      }, "baseline");
+#if defined(__x86_64__)
+      if (cpu_has_avx2())
+        check(std::integral_constant<int, 4>{}, [](const auto& index, const double* q, double search2, auto& s, auto&& visit) {
+          nearest_other::avx2::rows_within<N>(index, q, search2, s, visit);
+        }, "AVX2");
+      if (cpu_has_avx512())
+        check(std::integral_constant<int, 8>{}, [](const auto& index, const double* q, double search2, auto& s, auto&& visit) {
+          nearest_other::avx512::rows_within<N>(index, q, search2, s, visit);
+        }, "AVX-512");
+#endif
+      const int lanes = nearest_other::with_rows_within<N>(Simd::best, []<int Lanes>(std::integral_constant<int, Lanes>, auto) { return Lanes; });
+      EXPECT_EQ(lanes, cpu_has_avx512() ? 8 : 4);
     });
   }
 }
