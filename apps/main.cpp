@@ -158,7 +158,7 @@ std::string complete_help(CLI::App& app) {
 // Without arguments: what the tool does and how to start, instead of starting a long job. The
 // subcommands, reproduce's list and the methods come from the registered subcommands and
 // dfvn::kAllMethods, as --help, --help-all, the man page and the completion do. The main job's time was
-// measured on 2 quiet cores (bench/results.md: 4.1-4.4 s with AVX-512).
+// measured on 2 cores with AVX-512 (docs/PERFORMANCE.md: 16 s wall at load 4, 23.5 s CPU, 2026-11-28).
 std::string usage(CLI::App& app) {
   std::string text =
       "dfvn-sample: divergence-free vector noise (DFVN) in 2..8 dimensions, curl noise jittering of lattices\n"
@@ -166,7 +166,7 @@ std::string usage(CLI::App& app) {
       "\n"
       "The main job: every method's point set in one domain at one count, and one CSV row of\n"
       "nearest-neighbour statistics per method (any options run it, as does 'dfvn-sample sample ...'):\n"
-      "  dfvn-sample --dim 7 --grid 6              7D, 6^7 points a set (about 5 s on 2 cores)\n"
+      "  dfvn-sample --dim 7 --grid 6              7D, 6^7 points a set (12-16 s on 2 cores)\n"
       "  dfvn-sample -d 3 -n 4096 -o stats.csv     3D, 4096 points a set, the statistics to a file\n"
       "  methods (--methods): " + dfvn::method_names() + "\n"
       "\n"
