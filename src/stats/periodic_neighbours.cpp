@@ -4,10 +4,12 @@
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
+#include <utility>
 
 #include <fmt/format.h>
 
 #include "dfvn/core/dimension.hpp"
+#include "dfvn/stats/cell_grid_neighbours.hpp"
 #include "dfvn/stats/distance_scale.hpp"
 #include "dfvn/stats/neighbour_loop.hpp"
 #include "dfvn/stats/nearest_other.hpp"
@@ -80,11 +82,15 @@ namespace {
 std::vector<double> periodic_distances_at_scale(const PointSet& points, std::size_t queries, int threads,
                                                 const FractionProgress& progress) {
   std::vector<double> distances;
-  if (queries > 0)
-    distances = points.dimension == 1 ? periodic_distances_1d(points, queries)
-                                      : dispatch_dimension(points.dimension, [&]<int N>() {
-                                          return periodic_distances_kd_tree<N>(points, queries, threads, progress);
-                                        });
+  if (queries > 0) {
+    if (points.dimension == 1)
+      distances = periodic_distances_1d(points, queries);
+    else if (auto grid = cell_grid::periodic_nearest_distances(points, queries, threads, progress))
+      distances = std::move(*grid);
+    else
+      distances = dispatch_dimension(points.dimension,
+                                     [&]<int N>() { return periodic_distances_kd_tree<N>(points, queries, threads, progress); });
+  }
   if (progress) progress(1.0);
   return distances;
 }

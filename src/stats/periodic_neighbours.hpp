@@ -17,10 +17,11 @@ double periodic_distance_between(const PointSet& points, std::size_t i, std::siz
 
 // For every point, the minimum-image distance to its nearest other point: the smallest of
 // periodic_distance_between over j != i. Every coordinate must lie in [lo, lo + side] (throws
-// std::invalid_argument naming the first that does not); needs at least 2 points. 1D by sorting,
-// 2D-8D by an exact KD-tree queried at the point and at each of its images x + side s,
-// s in {-1, 0, 1}^N, that lies closer to the box than the nearest distance found so far. Independent
-// of the thread count. `progress`: points done over points.
+// std::invalid_argument naming the first that does not); needs at least 2 points. 1D by sorting;
+// 4D-8D sets that fill the torus about evenly by a grid of about one point per cell
+// (stats/cell_grid_neighbours.hpp); the others by an exact KD-tree walk in which a subtree is as near as
+// the way round through the opposite face allows (stats/nearest_other.hpp). Both give the same bits.
+// Independent of the thread count. `progress`: points (or lines of grid cells) done over all.
 std::vector<double> periodic_nearest_neighbour_distances(const PointSet& points, int threads,
                                                          const FractionProgress& progress = {});
 
