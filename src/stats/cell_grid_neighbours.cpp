@@ -27,7 +27,7 @@ constexpr std::uint32_t kMostInACell = 32;
 // The fewest axes the grid takes. In 2D and 3D a line of cells holds n^(1/N) points, far more than a search
 // needs, and on a million uniform random points the KD-tree search took 0.4x and 0.9x the grid's time. In
 // 4D-7D the grid took 0.55x, 0.48x, 0.43x and 0.41x the tree's on a million, 0.52x, 0.39x and 0.38x on the
-// 7D main job's CNJ, Sobol and Poisson disk sets, and about 0.1x in 8D (bench/periodic_grid_vs_tree,
+// 7D main job's CNJ, Sobol and Poisson disk sets, and 0.45x on 400,000 in 8D (bench/periodic_grid_vs_tree,
 // bench/results.md).
 constexpr int kFewestAxes = 4;
 // The KD-tree search's relative pruning margin (stats/nearest_other.hpp).

@@ -4,8 +4,8 @@
 // it first and use the KD-tree search (stats/nearest_other.hpp) when it declines.
 //
 // Why: on the torus the KD-tree search costs 4-5x its Euclidean form in 7D (92% of the main job's points lie
-// within a nearest distance of some face, and every way round must be searched) and 24x in 8D, and its
-// leaves of 64 points scan thousands of points per query where a grid of one point per cell reaches the
+// within a nearest distance of some face, and every way round must be searched), and its leaves of 64
+// points scan thousands of points per query where a grid of one point per cell reaches the
 // nearest point in a few hundred cells. The grid walks depth first over all axes but the last, nearer
 // cells of each axis first, into the lines of cells along the last axis whose box comes within the best
 // distance found so far (the cells wrap round the torus), and scans a whole line, 8 points to a vector.
