@@ -410,10 +410,12 @@ class CellGrid {
   bool closer_than_radius(const double* x, const double* y) const {
     double dist2 = 0.0;
     if (periodic_) {  // the minimum image
+      // min(d, side - d) is d > side / 2 ? side - d : d to the bit (side - d is exact when d > side / 2,
+      // and rounds to at least side / 2 >= d otherwise), without a branch to mispredict.
       for (int j = 0; j < N; ++j) {
-        double d = std::abs(x[j] - y[j]);
-        if (d > 0.5 * side_) d = side_ - d;
-        dist2 += d * d;
+        const double d = std::abs(x[j] - y[j]);
+        const double e = side_ - d;
+        dist2 += (e < d ? e : d) * (e < d ? e : d);
       }
       return dist2 < r2_;
     }
