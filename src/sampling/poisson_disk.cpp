@@ -266,7 +266,8 @@ class CellGrid {
   static double square(double v) { return v * v; }
 
   std::int64_t cell_of(double v) const {
-    const auto c = static_cast<std::int64_t>(std::floor((v - lo_) / cell_));
+    // Truncation, not floor: they differ only below 0, which the clamp takes to 0 either way.
+    const auto c = static_cast<std::int64_t>((v - lo_) / cell_);
     return std::clamp<std::int64_t>(c, 0, cells_per_axis_ - 1);
   }
 
@@ -309,20 +310,25 @@ class CellGrid {
   // mostly never reached.
   template <class Leaf>
   bool near_cells(const Query& q, const Leaf& leaf) const {
+    // The axes by distance of the nearer face (a stable sort, by counting, without a branch to
+    // mispredict); axes at the grid's edge on the near side have no cell there: last, at infinity.
+    double d2[N];
+    std::int64_t offset[N];
+    int axes = 0;
+    for (int j = 0; j < N; ++j) {
+      const bool down = q.below2[j] <= q.above2[j];
+      const bool none = !periodic_ && (down ? q.cell[j] == 0 : q.cell[j] + 1 == cells_per_axis_);
+      d2[j] = none ? std::numeric_limits<double>::infinity() : down ? q.below2[j] : q.above2[j];
+      offset[j] = static_cast<std::int64_t>(down ? step_down(q, j) : step_up(q, j));
+      axes += none ? 0 : 1;
+    }
     double near2[N];
     std::int64_t step[N];
-    int axes = 0;
-    for (int j = 0; j < N; ++j) {  // insertion by distance; axes at the grid's edge on the near side have no cell there
-      const bool down = q.below2[j] <= q.above2[j];
-      if (!periodic_ && (down ? q.cell[j] == 0 : q.cell[j] + 1 == cells_per_axis_)) continue;
-      const double d2 = down ? q.below2[j] : q.above2[j];
-      int m = axes++;
-      for (; m > 0 && near2[m - 1] > d2; --m) {
-        near2[m] = near2[m - 1];
-        step[m] = step[m - 1];
-      }
-      near2[m] = d2;
-      step[m] = static_cast<std::int64_t>(down ? step_down(q, j) : step_up(q, j));
+    for (int j = 0; j < N; ++j) {
+      int rank = 0;
+      for (int k = 0; k < N; ++k) rank += (d2[k] < d2[j]) | ((k < j) & (d2[k] == d2[j]));
+      near2[rank] = d2[j];
+      step[rank] = offset[j];
     }
     const double limit2 = kFirstPass * r2_;
     constexpr std::size_t kAll = std::size_t{1} << N;
