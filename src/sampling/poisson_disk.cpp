@@ -14,6 +14,10 @@
 #include <thread>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "dfvn/core/bulk_memory.hpp"
 #include "dfvn/core/dimension.hpp"
 #include "dfvn/core/hash.hpp"
@@ -145,9 +149,19 @@ struct OverflowPoint {
 template <int N>
 class CellGrid {
  public:
+  struct Query {
+    const double* x;
+    std::uint64_t base;  // key of x's cell
+    std::int64_t cell[N];
+    double below2[N], above2[N];
+  };
+
   CellGrid(const Domain& domain, double radius, bool dense, std::uint64_t max_points)
       : lo_(domain.lo), cell_(radius), r2_(radius * radius), dense_(dense), periodic_(domain.periodic()),
         side_(domain.side) {
+    const bool safe = r2_ >= 1e-250 && r2_ <= 1e250 && side_ * side_ <= 1e250;
+    below_r2_ = safe ? r2_ * (1.0 - 1e-12) : -std::numeric_limits<double>::infinity();
+    above_r2_ = safe ? r2_ * (1.0 + 1e-12) : std::numeric_limits<double>::infinity();
     cells_per_axis_ = static_cast<std::int64_t>(std::max(1.0, std::ceil(domain.side / radius)));
     if (periodic_) {
       // The torus: whole cells that tile it, of side side / floor(side / r) >= r, so that the neighbours
@@ -186,24 +200,40 @@ class CellGrid {
   // cells within r/2 (where a conflict, if any, is usually found, in a few cells), then the others.
   // Non-empty cells are checked a few behind the ones found, which are prefetched, so that several
   // cache misses overlap and the search still stops at the first conflict.
-  bool conflicts(const double* x) const {
-    const Query q = query(x);
+  bool conflicts(const Query& q) const {
+    const double* x = q.x;
     Lookahead look(*this, x);
     if (near_cells(q, [&](std::uint64_t key) { return look.push(id_of(key)); }) || look.drain()) return true;
     // A cell of the first pass has bound < r^2/4 there, summed in another order: equal to within a
     // few ulps, so skipping bounds below r^2/4 (1 - 1e-9) here never skips a cell it left out.
     const double seen2 = kFirstPass * r2_ * (1.0 - 1e-9);
-    if (for_each_cell(q, [&](std::uint64_t key, double bound2) { return bound2 >= seen2 && look.push(id_of(key)); }))
-      return true;
-    return look.drain();
+    // The second pass lists its non-empty cells first, without a branch per cell (a third of them
+    // hold a point), then checks them with the records a few ahead prefetched.
+    std::size_t ids[pow3(N)];
+    std::size_t count = 0;
+    for_each_cell(q, [&](std::uint64_t key, double bound2) {
+      const std::size_t id = id_of(key);
+      const bool known = id != kNoCell;
+      ids[count] = id;
+      count += (bound2 >= seen2) & known & occupied(known ? id : 0);
+      return false;
+    });
+    for (std::size_t i = 0; i < std::min(count, kLookahead); ++i) prefetch_record(ids[i]);
+    for (std::size_t i = 0; i < count; ++i) {
+      if (i + kLookahead < count) prefetch_record(ids[i + kLookahead]);
+      if (cell_conflicts(records_.data()[ids[i]], x)) return true;
+    }
+    return false;
   }
 
-  // Starts fetching the record of x's own cell, the first that conflicts() reads (hashed: nothing).
-  void prefetch(const double* x) const {
-    if (!dense_) return;
-    std::uint64_t key = 0;
-    for (int j = 0; j < N; ++j) key += static_cast<std::uint64_t>(cell_of(x[j])) * stride_[j];
-    __builtin_prefetch(&records_.data()[key]);
+  // x's query for conflicts(), made a candidate ahead: it starts fetching the record of x's own cell,
+  // the first that conflicts() reads, while the caller checks the candidate before (hashed: no fetch).
+  // Fetching the nearer-face neighbours' records too was slower (7D: 4.9 s -> 5.7 s).
+  Query prepare(const double* x) const {
+    const Query q = query(x);
+    if (!dense_) return q;
+    __builtin_prefetch(&records_.data()[q.base]);
+    return q;
   }
 
   // Inserting thread: true if a point with index >= since is closer than r to x.
@@ -240,12 +270,10 @@ class CellGrid {
   static constexpr double kFirstPass = 0.25;  // the first pass: cells within r/2 (r^2/4)
   static constexpr std::size_t kLookahead = 8;      // cells prefetched ahead of the one checked
 
-  struct Query {
-    const double* x;
-    std::uint64_t base;  // key of x's cell
-    std::int64_t cell[N];
-    double below2[N], above2[N];
-  };
+  void prefetch_record(std::size_t id) const {
+    const auto* record = reinterpret_cast<const char*>(&records_.data()[id]);
+    for (std::size_t line = 0; line < sizeof(CellRecord<N>); line += 64) __builtin_prefetch(record + line);
+  }
 
   Query query(const double* x) const {
     Query q;
@@ -266,7 +294,8 @@ class CellGrid {
   static double square(double v) { return v * v; }
 
   std::int64_t cell_of(double v) const {
-    const auto c = static_cast<std::int64_t>(std::floor((v - lo_) / cell_));
+    // Truncation, not floor: they differ only below 0, which the clamp takes to 0 either way.
+    const auto c = static_cast<std::int64_t>((v - lo_) / cell_);
     return std::clamp<std::int64_t>(c, 0, cells_per_axis_ - 1);
   }
 
@@ -301,49 +330,53 @@ class CellGrid {
 
   // The cells whose box comes closer than r/2 to x. The farther face of x's cell is at least r/2 away
   // on every axis, so these cells are x's own and its neighbours towards the nearer faces on a subset
-  // of axes whose squared distances sum below r^2/4: with those distances sorted, each step of the
-  // enumeration below adds one cell, and a branch ends at the first distance that overshoots.
+  // of axes whose squared distances sum below r^2/4. They are listed by adding one axis at a time,
+  // nearest first, to the subsets found so far (a subset below the limit has all its own subsets below
+  // it, summed in the same order), and each is checked as it is found: x's own cell, the nearest
+  // neighbour, the next, both, ..., about in increasing distance, so that the conflict, if any, is
+  // found in fewer cells (4.4 checked per 7D query, against 7.3 depth first) and the farther axes are
+  // mostly never reached.
   template <class Leaf>
   bool near_cells(const Query& q, const Leaf& leaf) const {
+    // The axes by distance of the nearer face (a stable sort, by counting, without a branch to
+    // mispredict); axes at the grid's edge on the near side have no cell there: last, at infinity.
+    double d2[N];
+    std::int64_t offset[N];
+    int axes = 0;
+    for (int j = 0; j < N; ++j) {
+      const bool down = q.below2[j] <= q.above2[j];
+      const bool none = !periodic_ && (down ? q.cell[j] == 0 : q.cell[j] + 1 == cells_per_axis_);
+      d2[j] = none ? std::numeric_limits<double>::infinity() : down ? q.below2[j] : q.above2[j];
+      offset[j] = static_cast<std::int64_t>(down ? step_down(q, j) : step_up(q, j));
+      axes += none ? 0 : 1;
+    }
     double near2[N];
     std::int64_t step[N];
-    int axes = 0;
-    for (int j = 0; j < N; ++j) {  // insertion by distance; axes at the grid's edge on the near side have no cell there
-      const bool down = q.below2[j] <= q.above2[j];
-      if (!periodic_ && (down ? q.cell[j] == 0 : q.cell[j] + 1 == cells_per_axis_)) continue;
-      const double d2 = down ? q.below2[j] : q.above2[j];
-      int m = axes++;
-      for (; m > 0 && near2[m - 1] > d2; --m) {
-        near2[m] = near2[m - 1];
-        step[m] = step[m - 1];
-      }
-      near2[m] = d2;
-      step[m] = static_cast<std::int64_t>(down ? step_down(q, j) : step_up(q, j));
+    for (int j = 0; j < N; ++j) {
+      int rank = 0;
+      for (int k = 0; k < N; ++k) rank += (d2[k] < d2[j]) | ((k < j) & (d2[k] == d2[j]));
+      near2[rank] = d2[j];
+      step[rank] = offset[j];
     }
-    if (leaf(q.base)) return true;
     const double limit2 = kFirstPass * r2_;
-    // Depth-first over subsets in increasing axis order: (next axis, sum, key) per level.
-    int next[N + 1];
-    double sum[N + 1];
-    std::uint64_t key[N + 1];
-    int depth = 0;
-    next[0] = 0;
+    constexpr std::size_t kAll = std::size_t{1} << N;
+    double sum[kAll];
+    std::uint64_t key[kAll];
     sum[0] = 0.0;
     key[0] = q.base;
-    while (depth >= 0) {
-      const int i = next[depth];
-      const double s = sum[depth] + (i < axes ? near2[i] : 0.0);
-      if (i >= axes || s >= limit2) {
-        --depth;  // the next axes are farther still
-        if (depth >= 0) ++next[depth];
-        continue;
+    if (leaf(q.base)) return true;
+    std::size_t count = 1;
+    for (int i = 0; i < axes && near2[i] < limit2; ++i) {
+      const std::size_t before = count;
+      const std::uint64_t s = static_cast<std::uint64_t>(step[i]);
+      for (std::size_t m = 0; m < before; ++m) {
+        const double t = sum[m] + near2[i];
+        if (t < limit2) {
+          sum[count] = t;
+          key[count] = key[m] + s;
+          if (leaf(key[count++])) return true;
+        }
       }
-      const std::uint64_t k = key[depth] + static_cast<std::uint64_t>(step[i]);
-      if (leaf(k)) return true;
-      next[depth + 1] = i + 1;
-      sum[depth + 1] = s;
-      key[depth + 1] = k;
-      ++depth;
     }
     return false;
   }
@@ -407,13 +440,48 @@ class CellGrid {
     return false;
   }
 
+#if defined(__SSE2__)
+  // The squared per-axis distances two axes at a time (the same values as below), summed in a tree:
+  // within 2e-15 (relative) of the sum in axis order, all terms being >= 0, so a tree sum outside
+  // r^2 (1 -+ 1e-12) decides as the sum in axis order does, and only the others take that sum. A
+  // shorter chain of dependent additions, and half the instructions.
   bool closer_than_radius(const double* x, const double* y) const {
+    const __m128d side = _mm_set1_pd(side_), sign = _mm_set1_pd(-0.0);
+    __m128d acc = _mm_setzero_pd();
+    for (int j = 0; j + 2 <= N; j += 2) {
+      __m128d d = _mm_sub_pd(_mm_loadu_pd(x + j), _mm_loadu_pd(y + j));
+      if (periodic_) {
+        d = _mm_andnot_pd(sign, d);
+        d = _mm_min_pd(_mm_sub_pd(side, d), d);  // per lane: side - d < d ? side - d : d
+      }
+      acc = _mm_add_pd(acc, _mm_mul_pd(d, d));
+    }
+    double tree = _mm_cvtsd_f64(acc) + _mm_cvtsd_f64(_mm_unpackhi_pd(acc, acc));
+    if constexpr (N % 2 != 0) {
+      double d = std::abs(x[N - 1] - y[N - 1]);
+      if (periodic_) {
+        const double e = side_ - d;
+        d = e < d ? e : d;
+      }
+      tree += d * d;
+    }
+    if (tree < below_r2_) return true;
+    if (tree >= above_r2_) return false;
+    return closer_than_radius_in_order(x, y);
+  }
+#else
+  bool closer_than_radius(const double* x, const double* y) const { return closer_than_radius_in_order(x, y); }
+#endif
+
+  bool closer_than_radius_in_order(const double* x, const double* y) const {
     double dist2 = 0.0;
     if (periodic_) {  // the minimum image
+      // min(d, side - d) is d > side / 2 ? side - d : d to the bit (side - d is exact when d > side / 2,
+      // and rounds to at least side / 2 >= d otherwise), without a branch to mispredict.
       for (int j = 0; j < N; ++j) {
-        double d = std::abs(x[j] - y[j]);
-        if (d > 0.5 * side_) d = side_ - d;
-        dist2 += d * d;
+        const double d = std::abs(x[j] - y[j]);
+        const double e = side_ - d;
+        dist2 += (e < d ? e : d) * (e < d ? e : d);
       }
       return dist2 < r2_;
     }
@@ -452,6 +520,9 @@ class CellGrid {
   }
 
   double lo_, cell_, r2_;
+  // r^2 (1 -+ 1e-12): tree sums below or above them decide without the sum in axis order (outside
+  // [1e-250, 1e250], where squares may underflow or overflow, every sum takes it).
+  double below_r2_, above_r2_;
   bool dense_;
   bool periodic_;  // the torus: neighbours across the identified faces, minimum-image distances
   double side_;
@@ -598,6 +669,7 @@ class QueueProcess {
     const double* parent = points_store_[entry.point].x;
     // One candidate behind: candidate t's own cell is fetched while t + 1 is drawn.
     double candidates[2][N];
+    typename CellGrid<N>::Query queries[2];
     bool pending = false;  // candidate t - 1 is in the domain and waits for its check
     for (std::uint64_t t = 0; t <= k_; ++t) {
       double* candidate = candidates[t % 2];
@@ -608,10 +680,10 @@ class QueueProcess {
         for (int j = 0; j < N; ++j) candidate[j] += parent[j];
         if (domain_.periodic()) domain_.wrap(candidate, N);  // the torus: every candidate is in it
         inside = domain_.contains(candidate, N);
-        if (inside) grid_.prefetch(candidate);
+        if (inside) queries[t % 2] = grid_.prepare(candidate);
       }
       const double* previous = candidates[(t + 1) % 2];
-      if (pending && !grid_.conflicts(previous)) {
+      if (pending && !grid_.conflicts(queries[(t + 1) % 2])) {
         survivors.insert(survivors.end(), previous, previous + N);
         thrown.push_back(static_cast<std::uint32_t>(t - 1));
       }
