@@ -166,7 +166,7 @@ std::string usage(CLI::App& app) {
       "\n"
       "The main job: every method's point set in one domain at one count, and one CSV row of\n"
       "nearest-neighbour statistics per method (any options run it, as does 'dfvn-sample sample ...'):\n"
-      "  dfvn-sample --dim 7 --grid 6              7D, 6^7 points a set (12-16 s on 2 cores)\n"
+      "  dfvn-sample --dim 7 --grid 6              7D, 6^7 points a set (7-8 s on 2 cores)\n"
       "  dfvn-sample -d 3 -n 4096 -o stats.csv     3D, 4096 points a set, the statistics to a file\n"
       "  methods (--methods): " + dfvn::method_names() + "\n"
       "\n"
