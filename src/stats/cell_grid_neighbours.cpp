@@ -12,7 +12,6 @@
 #endif
 
 #include "dfvn/core/dimension.hpp"
-#include "dfvn/core/parallel.hpp"
 #include "dfvn/core/simd.hpp"
 #include "dfvn/stats/neighbour_loop.hpp"
 
@@ -84,7 +83,7 @@ inline unsigned lanes_below(const V8& acc, double best) {
 #endif
 
 template <int N>
-using NearestRows = void (*)(const Grid<N>&, const std::uint64_t*, std::size_t, std::size_t, std::size_t, double*, double*);
+using NearestRows = void (*)(const Grid<N>&, const std::uint64_t*, std::size_t, std::size_t, std::size_t, double*);
 
 // The widest build this CPU runs; every build finds rows at the same distances, bit for bit.
 template <int N>
@@ -168,11 +167,8 @@ std::optional<std::vector<double>> search(const PointSet& points, std::size_t qu
   std::sort(order.begin(), order.end());
   const NearestRows<N> rows = widest_build<N>(simd);
   std::vector<double> nearest2(g.rows);
-  std::vector<std::vector<double>> upper(static_cast<std::size_t>(resolve_threads(threads)));
   neighbour_loop::for_every_chunk(lines, threads, progress, [&](std::size_t begin, std::size_t end) {
-    std::vector<double>& mine = upper[static_cast<std::size_t>(omp_get_thread_num())];
-    if (mine.empty()) mine.assign(g.rows, std::numeric_limits<double>::infinity());
-    rows(g, order.data(), begin, end, queries, nearest2.data(), mine.data());
+    rows(g, order.data(), begin, end, queries, nearest2.data());
   });
   // The square root of the smallest squared distance, summed as periodic_distance_between() sums it: the
   // distance it gives for that pair, bit for bit.

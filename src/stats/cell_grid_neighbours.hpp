@@ -9,7 +9,6 @@
 // nearest point in a few hundred cells. The grid walks depth first over all axes but the last, nearer
 // cells of each axis first, into the lines of cells along the last axis whose box comes within the best
 // distance found so far (the cells wrap round the torus), and scans a whole line, 8 points to a vector.
-// Every distance it computes is also an upper bound for the other point's own search, which starts from it.
 //
 // The answer is the KD-tree search's, bit for bit: for each query the square root of the smallest squared
 // distance over the other points, each summed over axes in order of minimum-image differences as
