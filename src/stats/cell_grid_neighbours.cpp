@@ -29,16 +29,15 @@ constexpr std::uint32_t kMostInACell = 32;
 // 7D main job's CNJ, Sobol and Poisson disk sets, and 0.45x on 400,000 in 8D (bench/periodic_grid_vs_tree,
 // bench/results.md).
 constexpr int kFewestAxes = 4;
-// The KD-tree search's relative pruning margin (stats/nearest_other.hpp).
-constexpr double kPruneMargin = 1.0 + 1e-9;
+using neighbour_loop::kPruneMargin;  // the KD-tree search's relative pruning margin
 
-// The grid: m cells per axis, of side h[k] from lo[k]. A line is the m cells along the last axis; its points
+// The grid: m cells per axis, of side h from lo (the torus is a cube). A line is the m cells along the last axis; its points
 // are consecutive rows [begin[l], end[l]) in blocks of 8 rows (begin[l] a multiple of 8, the rows after
 // end[l] up to the next block padding at +inf), a block holding coordinate k of its rows at 8 k + lane.
 template <int N>
 struct Grid {
   int m = 0;
-  double lo[N] = {}, h[N] = {}, slack[N] = {}, side = 0.0, half_side = 0.0;
+  double lo = 0.0, h = 0.0, slack = 0.0, side = 0.0, half_side = 0.0;
   std::vector<std::uint32_t> begin, end;  // per line
   std::vector<double> blocks;             // 8 N doubles a block of 8 rows
   std::vector<std::uint32_t> original;    // row r is input point original[r] (padding: none)
@@ -62,11 +61,7 @@ inline unsigned lanes_below(const V8& acc, double best) {
 #pragma GCC push_options
 #pragma GCC target("avx2")
 namespace avx2 {
-inline unsigned lanes_below(const V8& acc, double best) {  // the baseline's loop, in AVX2 instructions
-  unsigned bits = 0;
-  for (int lane = 0; lane < 8; ++lane) bits |= static_cast<unsigned>(acc[lane] < best) << lane;
-  return bits;
-}
+using baseline::lanes_below;  // its loop, inlined here in AVX2 instructions
 #include "dfvn/stats/cell_grid_kernel.inc"
 }  // namespace avx2
 #pragma GCC pop_options
@@ -83,7 +78,7 @@ inline unsigned lanes_below(const V8& acc, double best) {
 #endif
 
 template <int N>
-using NearestRows = void (*)(const Grid<N>&, const std::uint64_t*, std::size_t, std::size_t, std::size_t, double*);
+using NearestRows = void (*)(const Grid<N>&, std::size_t, std::size_t, std::size_t, double*);
 
 // The widest build this CPU runs; every build finds rows at the same distances, bit for bit.
 template <int N>
@@ -113,10 +108,10 @@ std::optional<std::vector<double>> search(const PointSet& points, std::size_t qu
   if (m < 4) return std::nullopt;
   g.m = m;
   g.side = points.domain.side, g.half_side = 0.5 * g.side;
-  for (int k = 0; k < N; ++k) g.lo[k] = points.domain.lo, g.h[k] = g.side / m;
+  g.lo = points.domain.lo, g.h = g.side / m;
   // A point may sit a rounding outside the cell its coordinates put it in: the faces are taken this much
   // nearer (far above that rounding, far below any spacing that matters).
-  for (int k = 0; k < N; ++k) g.slack[k] = (std::abs(g.lo[k]) + g.h[k] * m) * 0x1p-40;
+  g.slack = (std::abs(g.lo) + g.side) * 0x1p-40;
   const auto cells = static_cast<std::size_t>(cells_of(m));
   const std::size_t lines = cells / static_cast<std::size_t>(m);
   // Each point's cell (the last cell holds the upper face), then the rows sorted by cell, stably, each line
@@ -125,7 +120,7 @@ std::optional<std::vector<double>> search(const PointSet& points, std::size_t qu
   for (std::size_t i = 0; i < n; ++i) {
     std::uint32_t c = 0;
     for (int k = 0; k < N; ++k) {
-      const double u = (points.point(i)[k] - g.lo[k]) / g.h[k];
+      const double u = (points.point(i)[k] - g.lo) / g.h;
       const int ck = std::clamp(static_cast<int>(u), 0, m - 1);
       c = c * static_cast<std::uint32_t>(m) + static_cast<std::uint32_t>(ck);
     }
@@ -152,23 +147,10 @@ std::optional<std::vector<double>> search(const PointSet& points, std::size_t qu
     g.cell[r] = cell_of_point[i];
     for (int k = 0; k < N; ++k) g.blocks[(r / 8) * 8 * N + k * 8 + r % 8] = points.point(i)[k];
   }
-  // The queries a line of cells (along the last axis) at a time, the lines in blocks of 2 along every other
-  // axis, so that the cells a block's queries visit stay in a core's cache.
-  std::vector<std::uint64_t> order(lines);
-  for (std::size_t l = 0; l < lines; ++l) {
-    std::uint64_t block = 0, inner = 0, rest = l;
-    int at[N - 1];
-    for (int k = N - 1; k-- > 0;) at[k] = static_cast<int>(rest % static_cast<std::uint64_t>(m)), rest /= static_cast<std::uint64_t>(m);
-    for (int k = 0; k < N - 1; ++k)
-      block = block * static_cast<std::uint64_t>((m + 1) / 2) + static_cast<std::uint64_t>(at[k] / 2),
-      inner = inner * 2 + static_cast<std::uint64_t>(at[k] % 2);
-    order[l] = (block << (N - 1) | inner) << 32 | l;
-  }
-  std::sort(order.begin(), order.end());
   const NearestRows<N> rows = widest_build<N>(simd);
   std::vector<double> nearest2(g.rows);
   neighbour_loop::for_every_chunk(lines, threads, progress, [&](std::size_t begin, std::size_t end) {
-    rows(g, order.data(), begin, end, queries, nearest2.data());
+    rows(g, begin, end, queries, nearest2.data());
   });
   // The square root of the smallest squared distance, summed as periodic_distance_between() sums it: the
   // distance it gives for that pair, bit for bit.

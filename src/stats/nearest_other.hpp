@@ -43,7 +43,7 @@
 
 namespace dfvn::nearest_other {
 
-inline constexpr double kPruneMargin = 1.0 + 1e-9;
+using neighbour_loop::kPruneMargin;
 
 // A leaf's bounding box: N lower coordinates padded with zeros to kBoxLanes, then the N upper ones.
 template <int N>

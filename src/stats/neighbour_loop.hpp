@@ -14,6 +14,11 @@
 
 namespace dfvn::neighbour_loop {
 
+// The searches' relative pruning margin: a subtree, leaf or cell is skipped only when its lower bound
+// exceeds the best squared distance by this much, far above the bound's rounding (a few units in the last
+// place), so that no closer point is ever pruned (stats/nearest_other.hpp, stats/cell_grid_neighbours.cpp).
+inline constexpr double kPruneMargin = 1.0 + 1e-9;
+
 // chunk(begin, end) for consecutive ranges [0, count) of 64 items (rows, leaves) on a dynamic schedule. Items done are
 // counted per chunk, and only the first thread reports them. Each item belongs to one chunk, so the results do not
 // depend on the thread count.
