@@ -480,8 +480,8 @@ class CellGrid {
       // and rounds to at least side / 2 >= d otherwise), without a branch to mispredict.
       for (int j = 0; j < N; ++j) {
         const double d = std::abs(x[j] - y[j]);
-        const double e = side_ - d;
-        dist2 += (e < d ? e : d) * (e < d ? e : d);
+        const double e = side_ - d, m = e < d ? e : d;
+        dist2 += m * m;
       }
       return dist2 < r2_;
     }
