@@ -11,7 +11,9 @@
 
 #include "dfvn/core/dimension.hpp"
 #include "dfvn/core/hash.hpp"
+#include "dfvn/core/point_set.hpp"
 #include "dfvn/noise/noise_functions.hpp"
+#include "dfvn/sampling/lattice.hpp"
 
 namespace dfvn::testing {
 
@@ -53,6 +55,16 @@ struct BasisDimName {
     return std::string(to_string(T::basis)) + "_" + std::to_string(T::dimension) + "D";
   }
 };
+
+// The fair protocol's cell-centred lattice of side^dimension sites, scaled into `box` (box.lo + box.side x:
+// exact ties on most axes), with box as its domain.
+inline PointSet fair_lattice_in(int dimension, int side, const Box& box) {
+  const LatticeSpec l{dimension, side, Protocol::fair};
+  PointSet lattice{dimension, Coordinates(l.point_count() * static_cast<std::size_t>(dimension)), box};
+  for (std::uint64_t i = 0; i < l.point_count(); ++i) l.point(i, lattice.coordinates.data() + static_cast<std::size_t>(dimension) * i);
+  for (double& x : lattice.coordinates) x = box.lo + box.side * x;
+  return lattice;
+}
 
 // A reproducible point in [lo, hi]^N: randomness is keyed by (seed, index), never by time.
 template <int N>

@@ -12,9 +12,9 @@
 
 #include "dfvn/core/dimension.hpp"
 #include "dfvn/sampling/jitter.hpp"
-#include "dfvn/sampling/lattice.hpp"
 #include "dfvn/stats/nearest_other.hpp"
 #include "dfvn/stats/periodic_neighbours.hpp"
+#include "test_support.hpp"
 
 namespace dfvn {
 namespace {
@@ -61,10 +61,7 @@ TEST(CellGridNeighbours, EqualsKdTreeAndBruteForce) {
       PointSet random = uniform_random_points(dimension, count, box, 300 + static_cast<std::uint64_t>(dimension), 2);
       add_hard_points(random);
       const int side = dimension == 4 ? 7 : dimension == 5 ? 5 : 4;
-      const LatticeSpec l{dimension, side, Protocol::fair};
-      PointSet lattice{dimension, Coordinates(l.point_count() * static_cast<std::size_t>(dimension)), box};
-      for (std::uint64_t i = 0; i < l.point_count(); ++i) l.point(i, lattice.coordinates.data() + static_cast<std::size_t>(dimension) * i);
-      for (double& x : lattice.coordinates) x = box.lo + box.side * x;
+      PointSet lattice = testing::fair_lattice_in(dimension, side, box);
       dispatch_dimension(dimension, [&]<int N>() {
         for (const PointSet* p : {&random, &lattice}) {
           if (N == 8 && p == &lattice) continue;

@@ -15,6 +15,7 @@
 #include "dfvn/stats/nearest_neighbour.hpp"
 #include "dfvn/stats/nearest_other.hpp"
 #include "dfvn/stats/radial_distribution.hpp"
+#include "test_support.hpp"
 
 namespace dfvn {
 namespace {
@@ -68,10 +69,7 @@ TEST(PeriodicNeighbours, EveryBuildEqualsBruteForce) {
         random.coordinates.insert(random.coordinates.end(), x.begin(), x.end());
       }
       const int side = dimension >= 7 ? 3 : dimension == 6 ? 4 : dimension == 5 ? 5 : dimension == 4 ? 7 : dimension == 3 ? 12 : 40;
-      const LatticeSpec l{dimension, side, Protocol::fair};
-      PointSet lattice{dimension, Coordinates(l.point_count() * static_cast<std::size_t>(dimension)), box};
-      for (std::uint64_t i = 0; i < l.point_count(); ++i) l.point(i, lattice.coordinates.data() + static_cast<std::size_t>(dimension) * i);
-      for (double& x : lattice.coordinates) x = box.lo + box.side * x;
+      PointSet lattice = testing::fair_lattice_in(dimension, side, box);
       dispatch_dimension(dimension, [&]<int N>() {
         for (const PointSet* p : {&random, &lattice}) {
           const std::vector<double> brute = periodic_nearest_neighbour_distances_brute_force(*p);
